@@ -1,0 +1,34 @@
+// The camera G-buffer (formats and encodings: shaders/shared/gbuffer.h) and the resolve pass
+// that fills it from a visibility buffer.
+#pragma once
+
+#include "engine/profiler.h"
+#include "engine/program.h"
+#include "engine/scene_gpu.h"
+#include "engine/view.h"
+
+namespace engine {
+
+struct GBuffer {
+  Image depth;     // R32_SFLOAT
+  Image normal;    // R16G16_SNORM
+  Image diffuse;   // R16G16B16A16_SFLOAT
+  Image specular;  // R16G16B16A16_SFLOAT
+  uint32_t width = 0;
+  uint32_t height = 0;
+};
+
+// Creates the images in GENERAL layout, ready for storage writes and reads.
+GBuffer createGBuffer(Context& ctx, uint32_t width, uint32_t height);
+
+class GBufferResolve {
+ public:
+  explicit GBufferResolve(Context& ctx);
+  void record(VkCommandBuffer cmd, const SceneGpu& scene, const Buffer& visibility,
+              const View& view, GBuffer& gbuffer, GpuProfiler* profiler = nullptr);
+
+ private:
+  ComputeProgram program_;
+};
+
+}  // namespace engine

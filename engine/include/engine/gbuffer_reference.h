@@ -1,0 +1,67 @@
+// CPU twin of the G-buffer resolve (shaders/raster/gbuffer_resolve.comp) and a decoder of the
+// GPU G-buffer, both producing decoded values in double so tests compare like with like.
+//
+// The reference follows the shader step by step (camera ray through the pixel centre hits the
+// plane of the visible triangle, barycentrics interpolate normal and UV, the normal flips to
+// face the viewer by the geometric normal, glTF metallic-roughness factors times textures) but
+// in double and without the storage formats' quantisation. One deliberate difference: textures
+// are sampled bilinearly on mip 0 of the Scene's own Texture (sRGB base colour decoded before
+// filtering, as the GPU's sRGB format does), whereas the GPU filters trilinearly, with
+// ray-differential gradients, a mip chain of the texture resampled to a power-of-two square.
+// The two agree exactly only for constant textures and, up to the sampler's sub-texel
+// precision, for magnified power-of-two textures (mip 0 only); tests compare textured
+// results only there.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/gbuffer.h"
+#include "engine/scene.h"
+#include "engine/view.h"
+
+namespace engine {
+
+// One G-buffer texel, decoded. Background texels (nothing visible) hold depth 1 and zeros.
+struct GBufferSample {
+  float depth = 1.0f;        // Vulkan NDC depth, the visibility buffer's float bits
+  glm::dvec3 normal{0.0};    // world-space unit shading normal, facing the viewer
+  glm::dvec3 diffuse{0.0};   // base colour * (1 - metallic)
+  double roughness = 0.0;    // perceptual, GGX alpha = roughness^2
+  glm::dvec3 f0{0.0};        // mix(0.04, base colour, metallic)
+  double metallic = 0.0;
+
+  bool background() const { return depth >= 1.0f; }
+};
+
+struct GBufferData {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<GBufferSample> samples;  // row-major, row 0 at the top of the image
+
+  const GBufferSample& at(uint32_t x, uint32_t y) const { return samples[size_t{y} * width + x]; }
+};
+
+// The resolve of `visibility` (view.width * view.height texels as the rasterizer writes them)
+// computed in double.
+GBufferData resolveGBufferReference(const Scene& scene, const View& view,
+                                    std::span<const uint64_t> visibility);
+
+// Decodes the raw bytes of the four G-buffer images (Image::readback, formats of
+// shaders/shared/gbuffer.h). Normals are decoded from RG16_SNORM and the octahedral map in
+// double, so the only difference to the reference left is the storage quantisation.
+GBufferData decodeGBuffer(uint32_t width, uint32_t height, std::span<const std::byte> depth,
+                          std::span<const std::byte> normal, std::span<const std::byte> diffuse,
+                          std::span<const std::byte> specular);
+
+// Reads the four images back (blocking) and decodes them.
+GBufferData readbackGBuffer(Context& ctx, GBuffer& gbuffer);
+
+// sRGB transfer function inverse (IEC 61966-2-1), encoded [0, 1] -> linear, in double.
+double srgbToLinear(double encoded);
+
+}  // namespace engine

@@ -1,0 +1,51 @@
+// The compute rasterizer: scene triangles -> visibility buffer, one uint64 per pixel holding
+// (float depth bits << 32) | triangle id, the nearest surface winning; all ones = empty.
+// Two dispatches: raster_setup (per triangle: transform, clip, snap, append) and an indirect
+// raster_triangles (coverage with a top-left fill rule, 64-bit atomicMin). No back-face
+// culling, so single- and double-sided geometry both render. The same code renders camera
+// views, shadow maps and (later) reflective shadow maps.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "engine/profiler.h"
+#include "engine/program.h"
+#include "engine/scene_gpu.h"
+
+namespace engine {
+
+struct RasterTarget {
+  const Buffer* visibility = nullptr;  // width * height uint64 starting at `offset`
+  VkDeviceSize offset = 0;             // bytes; a multiple of minStorageBufferOffsetAlignment
+  uint32_t width = 0;
+  uint32_t height = 0;
+};
+
+class Rasterizer {
+ public:
+  explicit Rasterizer(Context& ctx);
+
+  // Records clear + setup + coverage for one view. viewProj maps world space to Vulkan clip
+  // space (x right, y down, depth [0, 1]).
+  void record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::mat4& viewProj,
+              const RasterTarget& target, GpuProfiler* profiler = nullptr);
+
+  // The counters of the last recorded view (tests check `dropped` stays 0).
+  const Buffer& counters() const { return counters_; }
+
+  static VkDeviceSize visibilityBytes(uint32_t width, uint32_t height) {
+    return VkDeviceSize{width} * height * sizeof(uint64_t);
+  }
+
+ private:
+  void reserve(uint32_t triangleCount);
+
+  Context& ctx_;
+  ComputeProgram setup_;
+  ComputeProgram coverage_;
+  Buffer triangles_;  // gpu::RasterTriangle list
+  Buffer counters_;   // gpu::RasterCounters
+  uint32_t capacity_ = 0;
+};
+
+}  // namespace engine

@@ -1,0 +1,90 @@
+// A scene flattened for compute rendering: every mesh instance is baked into one world-space
+// triangle list, so rasterizer passes index one vertex buffer and one index buffer.
+// Conventions (docs/architecture.md): glTF's right-handed, +Y up, metres; radiometric light
+// units taken numerically from KHR_lights_punctual (intensity -> W/sr, illuminance -> W/m^2).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace engine {
+
+// Decoded texture, always 8-bit RGBA. Whether the bytes are sRGB-encoded depends on the role
+// the material gives it (base colour: sRGB; metallic-roughness: linear), not on the image.
+struct Texture {
+  std::string name;  // file name or "<gltf>#image<i>" for embedded images; used in errors
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba8;  // width * height * 4 bytes, rows top to bottom
+};
+
+// glTF 2.0 metallic-roughness material. Emission is ignored (documented in architecture.md):
+// one-bounce transport from emissive surfaces is outside this module's scope.
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};  // linear RGBA
+  float metallicFactor = 1.0f;      // [0, 1]
+  float roughnessFactor = 1.0f;     // perceptual roughness r in [0, 1]; GGX alpha = r^2
+  int baseColorTexture = -1;        // index into Scene::textures, -1 = none
+  int metallicRoughnessTexture = -1;  // glTF packing: roughness in G, metallic in B
+  bool doubleSided = false;
+};
+
+enum class LightType : uint32_t { Directional = 0, Point = 1, Spot = 2 };
+
+struct Light {
+  std::string name;
+  LightType type = LightType::Point;
+  glm::vec3 position{0.0f};            // world space (unused for directional)
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, the way light travels (node -Z), world space
+  glm::vec3 color{1.0f};               // linear RGB, multiplies intensity
+  float intensity = 1.0f;              // point/spot: W/sr; directional: W/m^2 on a normal plane
+  float range = 0.0f;                  // metres; 0 = infinite (KHR_lights_punctual)
+  float innerConeAngle = 0.0f;         // radians, spot only, in [0, outer)
+  float outerConeAngle = 0.7853982f;   // radians, spot only, in (0, pi/2]
+};
+
+struct Camera {
+  std::string name;
+  glm::mat4 cameraToWorld{1.0f};  // camera looks down its local -Z, +Y up (glTF)
+  bool perspective = true;
+  float yfov = 0.8f;        // radians, perspective
+  float aspectRatio = 0.0f; // width / height; 0 = take it from the viewport
+  float znear = 0.05f;      // metres, > 0
+  float zfar = 0.0f;        // metres; 0 = infinite (perspective only)
+  float xmag = 1.0f;        // orthographic half width, metres
+  float ymag = 1.0f;        // orthographic half height, metres
+};
+
+struct Bounds {
+  glm::vec3 min{0.0f};
+  glm::vec3 max{0.0f};
+};
+
+struct Scene {
+  std::string source;  // file the scene came from, or "builtin:<name>"
+
+  // One entry per vertex, world space. Normals are unit length; when a glTF mesh has none they
+  // are generated as area-weighted averages of the face normals sharing a vertex position.
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;           // (0,0) when the mesh has no TEXCOORD_0
+  std::vector<uint32_t> indices;        // 3 per triangle, counter-clockwise front faces
+  std::vector<uint32_t> triangleMaterial;  // one material index per triangle
+
+  std::vector<Material> materials;  // never empty: loaders add a default material when needed
+  std::vector<Texture> textures;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;  // may be empty: see defaultCamera()
+
+  uint32_t triangleCount() const { return static_cast<uint32_t>(indices.size() / 3); }
+  Bounds bounds() const;
+};
+
+// A perspective camera that frames the whole scene from its +Z side, used when the glTF has none.
+Camera defaultCamera(const Scene& scene);
+
+}  // namespace engine

@@ -1,0 +1,132 @@
+#include "engine/direct_light.h"
+
+#include <cmath>
+
+#include "engine/commands.h"
+#include "spirv/direct_light.h"
+
+namespace engine {
+namespace {
+
+// A perspective cone wider than this (half angle) is rendered as a cube instead: the texel
+// density of one view falls as 1/cos^2 towards its edges and collapses near 90 degrees.
+constexpr float kMaxSpotViewHalfAngle = 1.2f;
+
+glm::vec3 anyPerpendicularUp(const glm::vec3& forward) {
+  return std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+}
+
+struct Range {
+  float znear;
+  float zfar;
+};
+
+// Near/far planes that enclose the scene bounds as seen from `eye`.
+Range depthRange(const Bounds& b, const glm::vec3& eye) {
+  glm::vec3 c = 0.5f * (b.min + b.max);
+  float radius = 0.5f * glm::length(b.max - b.min);
+  float farthest = glm::length(c - eye) + radius;
+  return {std::max(1e-3f, 1e-4f * farthest), farthest * 1.01f + 1e-3f};
+}
+
+gpu::ShadowView perspectiveView(const glm::vec3& eye, const glm::vec3& forward, float halfAngle,
+                                const Bounds& bounds, uint32_t resolution) {
+  Range r = depthRange(bounds, eye);
+  glm::mat4 proj = perspectiveVulkan(2.0f * halfAngle, 1.0f, r.znear, r.zfar);
+  glm::mat4 view = lookAlong(eye, forward, anyPerpendicularUp(forward));
+  float texelPerMetre = 2.0f * std::tan(halfAngle) / static_cast<float>(resolution);
+  return {proj * view, glm::vec4(texelPerMetre, 0.0f, 0.0f, 0.0f)};
+}
+
+void appendCube(LightSetup& setup, const glm::vec3& eye, const Bounds& bounds, uint32_t resolution) {
+  const glm::vec3 faces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  // 90 degrees plus one texel so that PCF taps at a face edge stay inside the face.
+  float halfAngle = std::atan(1.0f + 2.0f / static_cast<float>(resolution));
+  for (const glm::vec3& f : faces) setup.views.push_back(perspectiveView(eye, f, halfAngle, bounds, resolution));
+}
+
+}  // namespace
+
+LightSetup buildLightSetup(const Scene& scene, const DirectLightSettings& settings) {
+  LightSetup setup;
+  Bounds bounds = scene.bounds();
+  const uint32_t res = settings.shadowResolution;
+  for (const Light& light : scene.lights) {
+    gpu::GpuLight g{};
+    g.position = glm::vec4(light.position, 1.0f);
+    g.direction = glm::vec4(glm::normalize(light.direction), 0.0f);
+    g.radiance = glm::vec4(light.color * light.intensity, light.range);
+    float cosOuter = std::cos(light.outerConeAngle), cosInner = std::cos(light.innerConeAngle);
+    g.spot.x = 1.0f / std::max(1e-3f, cosInner - cosOuter);
+    g.spot.y = -cosOuter * g.spot.x;
+    g.info = glm::uvec4(static_cast<uint32_t>(light.type), static_cast<uint32_t>(setup.views.size()), 0u, 0u);
+    if (settings.shadows) {
+      size_t first = setup.views.size();
+      if (light.type == LightType::Directional) {
+        glm::vec3 d = glm::vec3(g.direction);
+        glm::vec3 c = 0.5f * (bounds.min + bounds.max);
+        float radius = std::max(1e-3f, 0.5f * glm::length(bounds.max - bounds.min));
+        glm::vec3 eye = c - d * (2.0f * radius);
+        glm::mat4 proj = orthographicVulkan(radius, radius, 0.5f * radius, 3.5f * radius);
+        glm::mat4 view = lookAlong(eye, d, anyPerpendicularUp(d));
+        setup.views.push_back({proj * view, glm::vec4(0.0f, 2.0f * radius / static_cast<float>(res), 0.0f, 0.0f)});
+      } else if (light.type == LightType::Spot && light.outerConeAngle <= kMaxSpotViewHalfAngle) {
+        // One texel of margin beyond the cone keeps PCF taps at the cone edge inside the map.
+        float half = std::min(light.outerConeAngle + 2.0f / static_cast<float>(res), kMaxSpotViewHalfAngle + 0.1f);
+        setup.views.push_back(perspectiveView(light.position, glm::vec3(g.direction), half, bounds, res));
+      } else {
+        appendCube(setup, light.position, bounds, res);
+      }
+      g.info.z = static_cast<uint32_t>(setup.views.size() - first);
+    }
+    setup.lights.push_back(g);
+  }
+  return setup;
+}
+
+DirectLighting::DirectLighting(Context& ctx, const Scene& scene, const DirectLightSettings& settings)
+    : settings_(settings),
+      setup_(buildLightSetup(scene, settings)),
+      program_(ctx, "direct_light", kDirectLightSpv,
+               {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+               sizeof(gpu::DirectLightPush)) {
+  if (settings.shadowResolution < 16 || settings.shadowResolution > 4096)
+    throw Error("shadow resolution " + std::to_string(settings.shadowResolution) +
+                " outside [16, 4096]");
+  auto makeBuffer = [&](const void* data, size_t bytes) {
+    Buffer b(ctx, std::max<size_t>(bytes, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
+    b.upload(ctx, data, bytes);
+    return b;
+  };
+  lights_ = makeBuffer(setup_.lights.data(), setup_.lights.size() * sizeof(gpu::GpuLight));
+  views_ = makeBuffer(setup_.views.data(), setup_.views.size() * sizeof(gpu::ShadowView));
+  VkDeviceSize mapBytes = Rasterizer::visibilityBytes(settings.shadowResolution, settings.shadowResolution);
+  shadowMaps_ = Buffer(ctx, std::max<VkDeviceSize>(mapBytes * setup_.views.size(), 16),
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
+}
+
+void DirectLighting::record(VkCommandBuffer cmd, const SceneGpu& scene, Rasterizer& rasterizer,
+                            const GBuffer& g, const View& view, Image& radiance,
+                            GpuProfiler* profiler) {
+  const uint32_t res = settings_.shadowResolution;
+  VkDeviceSize mapBytes = Rasterizer::visibilityBytes(res, res);
+  for (size_t i = 0; i < setup_.views.size(); ++i) {
+    ProfileScope scope(profiler, cmd, "shadow maps");
+    rasterizer.record(cmd, scene, setup_.views[i].viewProj, {&shadowMaps_, i * mapBytes, res, res});
+  }
+  ProfileScope scope(profiler, cmd, "direct light");
+  gpu::DirectLightPush push{view.invViewProj, {g.width, g.height},
+                            static_cast<uint32_t>(setup_.lights.size()), res};
+  program_.dispatch(cmd,
+                    {Binding::storage(lights_), Binding::storage(views_), Binding::storage(shadowMaps_),
+                     Binding::storageImage(g.depth), Binding::storageImage(g.normal),
+                     Binding::storageImage(g.diffuse), Binding::storageImage(g.specular),
+                     Binding::storageImage(radiance)},
+                    push, groupCount(g.width, DIRECT_GROUP_X), groupCount(g.height, DIRECT_GROUP_Y));
+  computeBarrier(cmd);
+}
+
+}  // namespace engine

@@ -1,0 +1,155 @@
+#include "engine/raster_reference.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "shared/raster.h"
+
+namespace engine {
+namespace {
+
+constexpr int kScale = static_cast<int>(RASTER_SUBPIXEL_SCALE);
+
+struct Context {
+  glm::mat4 viewProj;
+  uint32_t width;
+  uint32_t height;
+  uint32_t triangleId;
+  ReferenceRaster* out;
+};
+
+// Mirrors toClip(): ((c0 * x + c1 * y) + c2 * z) + c3, each product and sum rounded to float.
+glm::vec4 toClip(const glm::mat4& m, const glm::vec3& p) {
+  glm::vec4 r;
+  for (int k = 0; k < 4; ++k) {
+    float a = m[0][k] * p.x;
+    float b = m[1][k] * p.y;
+    float c = m[2][k] * p.z;
+    float s = a + b;
+    s = s + c;
+    r[k] = s + m[3][k];
+  }
+  return r;
+}
+
+float planeDistance(const glm::vec4& v, int k) {
+  float g = static_cast<float>(RASTER_GUARD_BAND) * v.w;
+  switch (k) {
+    case 0: return v.z;
+    case 1: return g - v.x;
+    case 2: return g + v.x;
+    case 3: return g - v.y;
+    default: return g + v.y;
+  }
+}
+
+glm::vec4 intersectEdge(const glm::vec4& inside, float dIn, const glm::vec4& outside, float dOut) {
+  float t = dIn / (dIn - dOut);
+  glm::vec4 r;
+  for (int k = 0; k < 4; ++k) r[k] = inside[k] + (outside[k] - inside[k]) * t;
+  return r;
+}
+
+glm::ivec2 toFixed(const Context& c, const glm::vec4& v) {
+  glm::ivec2 r;
+  for (int k = 0; k < 2; ++k) {
+    float ndc = v[k] / v.w;
+    float extent = static_cast<float>(k == 0 ? c.width : c.height);
+    float screen = (ndc * 0.5f + 0.5f) * extent;
+    r[k] = static_cast<int>(std::floor(screen * static_cast<float>(RASTER_SUBPIXEL_SCALE) + 0.5f));
+  }
+  return r;
+}
+
+int64_t edge(glm::ivec2 a, glm::ivec2 b, glm::ivec2 p) {
+  return int64_t{b.x - a.x} * int64_t{p.y - a.y} - int64_t{b.y - a.y} * int64_t{p.x - a.x};
+}
+
+int64_t fillBias(glm::ivec2 a, glm::ivec2 b) {
+  glm::ivec2 d = b - a;
+  bool topLeft = d.y < 0 || (d.y == 0 && d.x > 0);
+  return topLeft ? 0 : -1;
+}
+
+void emit(Context& c, glm::vec4 c0, glm::vec4 c1, glm::vec4 c2) {
+  glm::ivec2 p0 = toFixed(c, c0), p1 = toFixed(c, c1), p2 = toFixed(c, c2);
+  float z0 = c0.z / c0.w, z1 = c1.z / c1.w, z2 = c2.z / c2.w;
+  int64_t area = edge(p0, p1, p2);
+  if (area == 0) return;
+  if (area < 0) {
+    std::swap(p1, p2);
+    std::swap(z1, z2);
+  }
+  glm::ivec2 lo = glm::min(glm::min(p0, p1), p2), hi = glm::max(glm::max(p0, p1), p2);
+  glm::ivec2 pixLo = (lo - kScale / 2 + kScale - 1) >> RASTER_SUBPIXEL_BITS;
+  glm::ivec2 pixHi = (hi - kScale / 2) >> RASTER_SUBPIXEL_BITS;
+  pixLo = glm::max(pixLo, glm::ivec2(0));
+  pixHi = glm::min(pixHi, glm::ivec2(c.width, c.height) - 1);
+  for (int y = pixLo.y; y <= pixHi.y; ++y) {
+    for (int x = pixLo.x; x <= pixHi.x; ++x) {
+      glm::ivec2 s(x * kScale + kScale / 2, y * kScale + kScale / 2);
+      int64_t e0 = edge(p1, p2, s), e1 = edge(p2, p0, s), e2 = edge(p0, p1, s);
+      if (e0 + fillBias(p1, p2) < 0 || e1 + fillBias(p2, p0) < 0 || e2 + fillBias(p0, p1) < 0)
+        continue;
+      size_t pixel = static_cast<size_t>(y) * c.width + x;
+      c.out->coverage[pixel]++;
+      float a = static_cast<float>(e0) * z0;
+      float b = static_cast<float>(e1) * z1;
+      float d = static_cast<float>(e2) * z2;
+      float sum = a + b;
+      sum = sum + d;
+      float z = sum / static_cast<float>(e0 + e1 + e2);
+      if (!(z >= 0.0f && z <= 1.0f)) continue;
+      uint64_t packed = (uint64_t{std::bit_cast<uint32_t>(z)} << 32) | c.triangleId;
+      c.out->visibility[pixel] = std::min(c.out->visibility[pixel], packed);
+    }
+  }
+}
+
+}  // namespace
+
+ReferenceRaster rasterizeReference(const Scene& scene, const glm::mat4& viewProj, uint32_t width,
+                                   uint32_t height) {
+  ReferenceRaster out;
+  out.visibility.assign(size_t{width} * height, ~uint64_t{0});
+  out.coverage.assign(size_t{width} * height, 0);
+  Context c{viewProj, width, height, 0, &out};
+  for (uint32_t tri = 0; tri < scene.triangleCount(); ++tri) {
+    c.triangleId = tri;
+    glm::vec4 v[3];
+    for (int i = 0; i < 3; ++i) v[i] = toClip(viewProj, scene.positions[scene.indices[3 * tri + i]]);
+    bool rejected = false;
+    for (int axis = 0; axis < 2; ++axis) {
+      rejected = rejected || (v[0][axis] > v[0].w && v[1][axis] > v[1].w && v[2][axis] > v[2].w);
+      rejected = rejected || (v[0][axis] < -v[0].w && v[1][axis] < -v[1].w && v[2][axis] < -v[2].w);
+    }
+    rejected = rejected || (v[0].z < 0.0f && v[1].z < 0.0f && v[2].z < 0.0f);
+    rejected = rejected || (v[0].z > v[0].w && v[1].z > v[1].w && v[2].z > v[2].w);
+    if (rejected) continue;
+
+    bool inside = true;
+    for (int k = 0; k < 5; ++k)
+      for (int i = 0; i < 3; ++i) inside = inside && planeDistance(v[i], k) >= 0.0f;
+    if (inside) {
+      emit(c, v[0], v[1], v[2]);
+      continue;
+    }
+    std::vector<glm::vec4> poly(v, v + 3), next;
+    for (int k = 0; k < 5 && !poly.empty(); ++k) {
+      next.clear();
+      for (size_t i = 0; i < poly.size(); ++i) {
+        glm::vec4 a = poly[i], b = poly[(i + 1) % poly.size()];
+        float da = planeDistance(a, k), db = planeDistance(b, k);
+        if (da >= 0.0f) next.push_back(a);
+        if ((da >= 0.0f) != (db >= 0.0f))
+          next.push_back(da >= 0.0f ? intersectEdge(a, da, b, db) : intersectEdge(b, db, a, da));
+      }
+      poly.swap(next);
+    }
+    for (size_t i = 1; i + 1 < poly.size(); ++i) emit(c, poly[0], poly[i], poly[i + 1]);
+  }
+  return out;
+}
+
+}  // namespace engine

@@ -1,0 +1,67 @@
+#include "engine/rasterizer.h"
+
+#include "engine/commands.h"
+#include "shared/raster.h"
+#include "spirv/raster_setup.h"
+#include "spirv/raster_triangles.h"
+
+namespace engine {
+
+Rasterizer::Rasterizer(Context& ctx)
+    : ctx_(ctx),
+      setup_(ctx, "raster_setup", kRasterSetupSpv,
+             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+              VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             sizeof(gpu::RasterSetupPush)),
+      coverage_(ctx, "raster_triangles", kRasterTrianglesSpv,
+                {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                 VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                sizeof(gpu::RasterTrianglesPush)),
+      counters_(ctx, sizeof(gpu::RasterCounters),
+                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                MemoryUsage::GpuOnly) {}
+
+void Rasterizer::reserve(uint32_t triangleCount) {
+  // Most triangles yield at most one entry (frustum-culled ones none); near-plane clipping adds
+  // one more, guard-band clipping up to four more but only for huge triangles. Twice the input
+  // plus slack covers real scenes; overflow is counted in RasterCounters::dropped.
+  uint32_t needed = 2 * triangleCount + 1024;
+  if (needed <= capacity_) return;
+  triangles_ = Buffer(ctx_, VkDeviceSize{needed} * sizeof(gpu::RasterTriangle),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
+  capacity_ = needed;
+}
+
+void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::mat4& viewProj,
+                        const RasterTarget& target, GpuProfiler* profiler) {
+  if (target.width == 0 || target.height == 0 || target.width > RASTER_MAX_VIEWPORT ||
+      target.height > RASTER_MAX_VIEWPORT)
+    throw Error("rasterizer: viewport " + std::to_string(target.width) + "x" +
+                std::to_string(target.height) + " outside 1.." + std::to_string(RASTER_MAX_VIEWPORT));
+  reserve(scene.triangleCount);
+  VkDeviceSize visBytes = visibilityBytes(target.width, target.height);
+
+  {
+    ProfileScope scope(profiler, cmd, "raster setup");
+    gpu::RasterCounters zero{0, 0, 1, 1, 0, 0, 0, 0};
+    updateBuffer(cmd, counters_, &zero, sizeof(zero));
+    fillBuffer(cmd, *target.visibility, 0xFFFFFFFFu, target.offset, visBytes);
+    gpu::RasterSetupPush push{viewProj, {target.width, target.height}, scene.triangleCount, capacity_};
+    setup_.dispatch(cmd,
+                    {Binding::storage(scene.vertices), Binding::storage(scene.indices),
+                     Binding::storage(triangles_), Binding::storage(counters_)},
+                    push, groupCount(scene.triangleCount, RASTER_GROUP_SIZE));
+    computeBarrier(cmd);
+  }
+  {
+    ProfileScope scope(profiler, cmd, "raster coverage");
+    gpu::RasterTrianglesPush push{{target.width, target.height}, capacity_, 0};
+    coverage_.dispatchIndirect(cmd,
+                               {Binding::storage(triangles_), Binding::storage(counters_),
+                                Binding::storage(*target.visibility, target.offset, visBytes)},
+                               push, counters_, offsetof(gpu::RasterCounters, groupsX));
+    computeBarrier(cmd);
+  }
+}
+
+}  // namespace engine

@@ -1,0 +1,41 @@
+#include "engine/scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace engine {
+
+Bounds Scene::bounds() const {
+  if (positions.empty()) return Bounds{};
+  Bounds b{positions.front(), positions.front()};
+  for (const glm::vec3& p : positions) {
+    b.min = glm::min(b.min, p);
+    b.max = glm::max(b.max, p);
+  }
+  return b;
+}
+
+Camera defaultCamera(const Scene& scene) {
+  // Frames the bounding sphere of the bounding box: at distance r / sin(yfov / 2) the sphere
+  // touches the top and bottom of the view, whatever the aspect ratio is wider than 1.
+  constexpr float kYfov = 0.8f;
+  constexpr float kMinRadius = 1e-3f;  // a point-like scene still gets a usable camera
+  const Bounds b = scene.bounds();
+  const glm::vec3 centre = 0.5f * (b.min + b.max);
+  const float radius = std::max(0.5f * glm::length(b.max - b.min), kMinRadius);
+  const float distance = radius / std::sin(0.5f * kYfov);
+
+  Camera camera;
+  camera.name = "default";
+  camera.perspective = true;
+  camera.yfov = kYfov;
+  camera.aspectRatio = 0.0f;
+  // Depth precision scales with znear; 1e-3 of the scene size keeps close-ups unclipped.
+  camera.znear = std::max(1e-3f, 1e-3f * radius);
+  camera.zfar = 0.0f;
+  camera.cameraToWorld = glm::mat4(1.0f);
+  camera.cameraToWorld[3] = glm::vec4(centre + glm::vec3(0.0f, 0.0f, distance), 1.0f);
+  return camera;
+}
+
+}  // namespace engine

@@ -1,0 +1,75 @@
+#include "options.h"
+
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+#include "engine/error.h"
+
+namespace render {
+namespace {
+
+uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi) {
+  uint32_t value = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || value < lo || value > hi)
+    throw engine::Error(std::string(option) + ": expected an integer in [" + std::to_string(lo) +
+                        ", " + std::to_string(hi) + "], got '" + std::string(text) + "'");
+  return value;
+}
+
+float parseFloat(std::string_view option, std::string_view text, float lo, float hi) {
+  std::string s(text);
+  char* end = nullptr;
+  float value = std::strtof(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(value) || value < lo || value > hi)
+    throw engine::Error(std::string(option) + ": expected a number in [" + std::to_string(lo) +
+                        ", " + std::to_string(hi) + "], got '" + s + "'");
+  return value;
+}
+
+}  // namespace
+
+const char* usage() {
+  return "usage: vsgl_render [options]\n"
+         "  --scene NAME|FILE    built-in scene (cornell, atrium, checker) or .gltf/.glb (default cornell)\n"
+         "  --out DIR            output directory (default out)\n"
+         "  --width N --height N image size in pixels, 1..8192 (default 640x360)\n"
+         "  --frames N           measured frames after one warm-up frame, 1..1000 (default 5)\n"
+         "  --shadow-res N       shadow-map texels per side, 16..4096 (default 1024)\n"
+         "  --no-shadows         direct light without shadow maps\n"
+         "  --exposure EV        fixed exposure in stops for the PNG (default: auto)\n"
+         "  --device SEL         Vulkan device index or name substring (default: VSGL_DEVICE or auto)\n"
+         "  --list-devices       print the Vulkan devices and exit\n"
+         "  --validation         enable the Khronos validation layer\n"
+         "  --export-gltf PATH   also write the scene as a .gltf file\n";
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    std::string_view arg = argv[i];
+    auto value = [&]() -> std::string_view {
+      if (i + 1 >= argc) throw engine::Error(std::string(arg) + ": missing value");
+      return argv[++i];
+    };
+    if (arg == "--scene") o.scene = value();
+    else if (arg == "--out") o.outDir = value();
+    else if (arg == "--width") o.width = parseUint(arg, value(), 1, 8192);
+    else if (arg == "--height") o.height = parseUint(arg, value(), 1, 8192);
+    else if (arg == "--frames") o.frames = parseUint(arg, value(), 1, 1000);
+    else if (arg == "--shadow-res") o.shadowResolution = parseUint(arg, value(), 16, 4096);
+    else if (arg == "--no-shadows") o.shadows = false;
+    else if (arg == "--exposure") o.exposureEv = parseFloat(arg, value(), -64.0f, 64.0f);
+    else if (arg == "--device") o.device = value();
+    else if (arg == "--list-devices") o.listDevices = true;
+    else if (arg == "--validation") o.validation = true;
+    else if (arg == "--export-gltf") o.exportGltf = value();
+    else if (arg == "--help" || arg == "-h") o.help = true;
+    else throw engine::Error(std::string(arg) + ": unknown option (see --help)");
+  }
+  if (o.outDir.empty()) throw engine::Error("--out: empty path");
+  return o;
+}
+
+}  // namespace render

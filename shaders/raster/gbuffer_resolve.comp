@@ -1,0 +1,109 @@
+#version 460
+// Visibility buffer -> G-buffer. Per pixel: the triangle id from the visibility buffer, the
+// camera ray through the pixel centre intersected with that triangle's plane for barycentrics
+// (exact for any view, and for triangles the rasterizer clipped), attributes interpolated, and
+// textures filtered with ray differentials (the rays of the next pixel right and down give
+// the UV gradients, as hardware derivatives would).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+
+#include "shared/gbuffer.h"
+#include "shared/raster.h"
+#include "shared/scene_data.h"
+#include "common/camera_ray.glsl"
+#include "common/octahedral.glsl"
+
+layout(local_size_x = GBUFFER_GROUP_X, local_size_y = GBUFFER_GROUP_Y) in;
+
+layout(std430, binding = 0) readonly buffer Visibility { uint64_t visibility[]; };
+layout(std430, binding = 1) readonly buffer Vertices { SceneVertex vertices[]; };
+layout(std430, binding = 2) readonly buffer Indices { uint indices[]; };
+layout(std430, binding = 3) readonly buffer TriangleMaterials { uint triangleMaterial[]; };
+layout(std430, binding = 4) readonly buffer Materials { SceneMaterial materials[]; };
+layout(binding = 5) uniform sampler2DArray baseColorTextures;  // sRGB format: reads are linear
+layout(binding = 6) uniform sampler2DArray metallicRoughnessTextures;
+layout(binding = 7, r32f) uniform writeonly image2D outDepth;
+layout(binding = 8, rg16_snorm) uniform writeonly image2D outNormal;
+layout(binding = 9, rgba16f) uniform writeonly image2D outDiffuse;
+layout(binding = 10, rgba16f) uniform writeonly image2D outSpecular;
+layout(push_constant) uniform Push { GBufferResolvePush pc; };
+
+// Barycentrics (u, v) of the ray's hit with the plane of triangle (a, b, c): Moller-Trumbore
+// without the inside test, so neighbouring-pixel rays extrapolate smoothly past the edges.
+vec2 planeBarycentrics(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c) {
+  vec3 e1 = b - a, e2 = c - a;
+  vec3 p = cross(dir, e2);
+  float det = dot(e1, p);
+  if (abs(det) < 1e-30) return vec2(1.0 / 3.0);  // ray parallel to the plane
+  vec3 s = origin - a;
+  vec3 q = cross(s, e1);
+  return vec2(dot(s, p), dot(dir, q)) / det;
+}
+
+vec2 rayBarycentrics(vec2 pixel, vec3 a, vec3 b, vec3 c) {
+  vec3 origin, dir;
+  cameraRay(pc.invViewProj, pixelToNdc(pixel, pc.viewport), origin, dir);
+  return planeBarycentrics(origin, dir, a, b, c);
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(pixel, pc.viewport))) return;
+  ivec2 coord = ivec2(pixel);
+  uint64_t vis = visibility[pixel.y * pc.viewport.x + pixel.x];
+  if (uint(vis >> 32) == RASTER_EMPTY_HI) {
+    imageStore(outDepth, coord, vec4(1.0));
+    imageStore(outNormal, coord, vec4(0.0));
+    imageStore(outDiffuse, coord, vec4(0.0));
+    imageStore(outSpecular, coord, vec4(0.0));
+    return;
+  }
+  float depth = uintBitsToFloat(uint(vis >> 32));
+  uint tri = uint(vis & 0xFFFFFFFFul);
+
+  SceneVertex v0 = vertices[indices[3 * tri]];
+  SceneVertex v1 = vertices[indices[3 * tri + 1]];
+  SceneVertex v2 = vertices[indices[3 * tri + 2]];
+  vec3 a = v0.positionU.xyz, b = v1.positionU.xyz, c = v2.positionU.xyz;
+  vec2 uvA = vec2(v0.positionU.w, v0.normalV.w);
+  vec2 uvB = vec2(v1.positionU.w, v1.normalV.w);
+  vec2 uvC = vec2(v2.positionU.w, v2.normalV.w);
+
+  vec2 centre = vec2(pixel) + 0.5;
+  vec2 bc = rayBarycentrics(centre, a, b, c);
+  vec2 bcX = rayBarycentrics(centre + vec2(1.0, 0.0), a, b, c);
+  vec2 bcY = rayBarycentrics(centre + vec2(0.0, 1.0), a, b, c);
+  vec2 duvA = uvB - uvA, duvB = uvC - uvA;
+  vec2 uv = uvA + bc.x * duvA + bc.y * duvB;
+  vec2 uvDx = (bcX.x - bc.x) * duvA + (bcX.y - bc.y) * duvB;
+  vec2 uvDy = (bcY.x - bc.x) * duvA + (bcY.y - bc.y) * duvB;
+
+  vec3 normal = normalize(v0.normalV.xyz * (1.0 - bc.x - bc.y) + v1.normalV.xyz * bc.x +
+                          v2.normalV.xyz * bc.y);
+  // Two-sided shading: a surface seen from behind is lit as its front, so flip the normal
+  // toward the viewer using the geometric normal (interpolated normals can disagree).
+  vec3 origin, dir;
+  cameraRay(pc.invViewProj, pixelToNdc(centre, pc.viewport), origin, dir);
+  if (dot(cross(b - a, c - a), dir) > 0.0) normal = -normal;
+
+  SceneMaterial m = materials[triangleMaterial[tri]];
+  vec4 base = m.baseColorFactor;
+  if (m.baseColorLayer >= 0)
+    base *= textureGrad(baseColorTextures, vec3(uv, float(m.baseColorLayer)), uvDx, uvDy);
+  float metallic = m.metallic, roughness = m.roughness;
+  if (m.metallicRoughnessLayer >= 0) {
+    vec4 mr = textureGrad(metallicRoughnessTextures, vec3(uv, float(m.metallicRoughnessLayer)),
+                          uvDx, uvDy);
+    roughness *= mr.g;  // glTF packing: G = roughness, B = metallic
+    metallic *= mr.b;
+  }
+  metallic = clamp(metallic, 0.0, 1.0);
+  roughness = clamp(roughness, 0.0, 1.0);
+  vec3 diffuse = base.rgb * (1.0 - metallic);
+  vec3 f0 = mix(vec3(0.04), base.rgb, metallic);  // glTF's dielectric F0 (IOR 1.5)
+
+  imageStore(outDepth, coord, vec4(depth));
+  imageStore(outNormal, coord, vec4(octEncode(normal), 0.0, 0.0));
+  imageStore(outDiffuse, coord, vec4(diffuse, roughness));
+  imageStore(outSpecular, coord, vec4(f0, metallic));
+}

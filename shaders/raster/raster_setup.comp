@@ -1,0 +1,130 @@
+#version 460
+// Triangle setup of the compute rasterizer, one thread per scene triangle: transform to clip
+// space, reject triangles outside the frustum, clip to the near plane and the guard band,
+// snap to fixed point and append the fan triangles with a non-empty pixel box.
+// The CPU twin is engine/src/raster_reference.cpp; both must round identically, hence
+// `precise` (no FMA contraction) and the explicit evaluation order of every product.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+
+#include "shared/raster.h"
+#include "shared/scene_data.h"
+
+layout(local_size_x = RASTER_GROUP_SIZE) in;
+
+layout(std430, binding = 0) readonly buffer Vertices { SceneVertex vertices[]; };
+layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
+layout(std430, binding = 2) writeonly buffer Triangles { RasterTriangle triangles[]; };
+layout(std430, binding = 3) buffer Counters { RasterCounters counters; };
+layout(push_constant) uniform Push { RasterSetupPush pc; };
+
+vec4 toClip(vec3 p) {
+  precise vec4 c = pc.viewProj[0] * p.x + pc.viewProj[1] * p.y + pc.viewProj[2] * p.z;
+  precise vec4 r = c + pc.viewProj[3];
+  return r;
+}
+
+// Signed distance to clip plane k (inside >= 0): near z >= 0, then |x|, |y| <= G w.
+float planeDistance(vec4 v, int k) {
+  precise float g = RASTER_GUARD_BAND * v.w;
+  if (k == 0) return v.z;
+  if (k == 1) return g - v.x;
+  if (k == 2) return g + v.x;
+  if (k == 3) return g - v.y;
+  return g + v.y;
+}
+
+// The intersection is always interpolated from the inside vertex towards the outside one, so
+// the two triangles sharing an edge compute bit-identical clipped vertices (no cracks).
+vec4 intersectEdge(vec4 inside, float dIn, vec4 outside, float dOut) {
+  precise float t = dIn / (dIn - dOut);
+  precise vec4 r = inside + (outside - inside) * t;
+  return r;
+}
+
+ivec2 toFixed(vec4 v) {
+  precise vec2 ndc = v.xy / v.w;
+  precise vec2 screen = (ndc * 0.5 + 0.5) * vec2(pc.viewport);
+  return ivec2(floor(screen * RASTER_SUBPIXEL_SCALE + 0.5));
+}
+
+int64_t edge(ivec2 a, ivec2 b, ivec2 p) {
+  return int64_t(b.x - a.x) * int64_t(p.y - a.y) - int64_t(b.y - a.y) * int64_t(p.x - a.x);
+}
+
+void emit(vec4 c0, vec4 c1, vec4 c2, uint triangleId) {
+  ivec2 p0 = toFixed(c0), p1 = toFixed(c1), p2 = toFixed(c2);
+  precise float z0 = c0.z / c0.w;
+  precise float z1 = c1.z / c1.w;
+  precise float z2 = c2.z / c2.w;
+  int64_t area = edge(p0, p1, p2);
+  if (area == 0) return;  // degenerate after snapping: covers no sample
+  if (area < 0) {         // no back-face culling: flip to a positive orientation
+    ivec2 tp = p1; p1 = p2; p2 = tp;
+    float tz = z1; z1 = z2; z2 = tz;
+  }
+  // Pixel box of the sample points (pixel centres at x + 0.5) inside the vertex box.
+  const int half_ = int(RASTER_SUBPIXEL_SCALE) / 2;
+  ivec2 lo = min(min(p0, p1), p2), hi = max(max(p0, p1), p2);
+  ivec2 pixLo = (lo - half_ + int(RASTER_SUBPIXEL_SCALE) - 1) >> RASTER_SUBPIXEL_BITS;
+  ivec2 pixHi = (hi - half_) >> RASTER_SUBPIXEL_BITS;
+  pixLo = max(pixLo, ivec2(0));
+  pixHi = min(pixHi, ivec2(pc.viewport) - 1);
+  if (pixLo.x > pixHi.x || pixLo.y > pixHi.y) return;
+
+  uint slot = atomicAdd(counters.triangleCount, 1u);
+  if (slot >= pc.capacity) {
+    atomicAdd(counters.dropped, 1u);
+    return;
+  }
+  atomicMax(counters.groupsX, slot / RASTER_GROUP_SIZE + 1u);
+  RasterTriangle t;
+  t.p0 = p0; t.p1 = p1; t.p2 = p2;
+  t.bboxMin = uint(pixLo.x) | (uint(pixLo.y) << 16);
+  t.bboxMax = uint(pixHi.x) | (uint(pixHi.y) << 16);
+  t.z0 = z0; t.z1 = z1; t.z2 = z2;
+  t.triangleId = triangleId;
+  triangles[slot] = t;
+}
+
+void main() {
+  uint tri = gl_GlobalInvocationID.x;
+  if (tri >= pc.triangleCount) return;
+  vec4 v[3];
+  for (int i = 0; i < 3; ++i) v[i] = toClip(vertices[indices[3 * tri + i]].positionU.xyz);
+
+  // Trivial reject against the real frustum (not the guard band): all outside one plane.
+  for (int axis = 0; axis < 2; ++axis) {
+    if (v[0][axis] > v[0].w && v[1][axis] > v[1].w && v[2][axis] > v[2].w) return;
+    if (v[0][axis] < -v[0].w && v[1][axis] < -v[1].w && v[2][axis] < -v[2].w) return;
+  }
+  if (v[0].z < 0.0 && v[1].z < 0.0 && v[2].z < 0.0) return;
+  if (v[0].z > v[0].w && v[1].z > v[1].w && v[2].z > v[2].w) return;
+
+  bool inside = true;
+  for (int k = 0; k < 5; ++k)
+    for (int i = 0; i < 3; ++i) inside = inside && planeDistance(v[i], k) >= 0.0;
+  if (inside) {
+    emit(v[0], v[1], v[2], tri);
+    return;
+  }
+
+  // Sutherland-Hodgman against the near plane and the four guard-band planes.
+  vec4 poly[RASTER_MAX_CLIP_VERTICES + 1];
+  vec4 next[RASTER_MAX_CLIP_VERTICES + 1];
+  int n = 3;
+  poly[0] = v[0]; poly[1] = v[1]; poly[2] = v[2];
+  for (int k = 0; k < 5 && n > 0; ++k) {
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      vec4 a = poly[i], b = poly[(i + 1) % n];
+      float da = planeDistance(a, k), db = planeDistance(b, k);
+      if (da >= 0.0) next[m++] = a;
+      if ((da >= 0.0) != (db >= 0.0))
+        next[m++] = da >= 0.0 ? intersectEdge(a, da, b, db) : intersectEdge(b, db, a, da);
+    }
+    n = m;
+    for (int i = 0; i < n; ++i) poly[i] = next[i];
+  }
+  for (int i = 1; i + 1 < n; ++i) emit(poly[0], poly[i], poly[i + 1], tri);
+}

@@ -1,0 +1,27 @@
+// G-buffer written by gbuffer_resolve.comp (and, later, by a host renderer). Encodings:
+//   depth    R32_SFLOAT       Vulkan NDC depth in [0, 1]; 1 = background (nothing hit)
+//   normal   R16G16_SNORM     world-space shading normal, octahedral (common/octahedral.glsl),
+//                             flipped to face the viewer
+//   diffuse  R16G16B16A16_SFLOAT  rgb = diffuse albedo (base colour * (1 - metallic)), a = perceptual roughness r (GGX alpha = r^2)
+//   specular R16G16B16A16_SFLOAT  rgb = F0 (mix(0.04, base colour, metallic)), a = metallic
+// World positions are rebuilt from depth with the inverse view-projection matrix.
+#ifndef SHADERS_SHARED_GBUFFER_H
+#define SHADERS_SHARED_GBUFFER_H
+#include "interop.h"
+
+#define GBUFFER_GROUP_X 8
+#define GBUFFER_GROUP_Y 8
+
+SHARED_BEGIN
+
+struct GBufferResolvePush {
+  mat4 invViewProj;
+  uvec2 viewport;
+  uint pad0;
+  uint pad1;
+};
+
+SHARED_END
+
+SHARED_ASSERT_SIZE(GBufferResolvePush, 80);
+#endif

@@ -1,0 +1,29 @@
+// Scene buffers shared by every pass that reads geometry or materials (std430).
+#ifndef SHADERS_SHARED_SCENE_DATA_H
+#define SHADERS_SHARED_SCENE_DATA_H
+#include "interop.h"
+
+SHARED_BEGIN
+
+// One world-space vertex: position with u in w, unit normal with v in w.
+struct SceneVertex {
+  vec4 positionU;
+  vec4 normalV;
+};
+
+// glTF metallic-roughness material; texture layers index the packed 2-D array images
+// (base colour: an sRGB array; metallic-roughness: a linear array). -1 = no texture.
+struct SceneMaterial {
+  vec4 baseColorFactor;  // linear RGBA
+  float metallic;        // [0, 1]
+  float roughness;       // perceptual roughness [0, 1]
+  int baseColorLayer;
+  int metallicRoughnessLayer;
+};
+
+SHARED_END
+
+SHARED_ASSERT_SIZE(SceneVertex, 32);
+SHARED_ASSERT_SIZE(SceneMaterial, 32);
+SHARED_ASSERT_OFFSET(SceneMaterial, metallic, 16);
+#endif

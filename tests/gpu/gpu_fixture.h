@@ -1,0 +1,29 @@
+// Base fixture of every GPU test: one Vulkan context with the Khronos validation layer for
+// the whole test program. A test is skipped, with the reason, when no usable device exists,
+// and fails when the validation layer reported anything while it ran.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "engine/vk_context.h"
+
+namespace testing_gpu {
+
+class GpuTest : public ::testing::Test {
+ protected:
+  static engine::Context* context();  // nullptr when no device; see skipReason()
+  static const std::string& skipReason();
+
+  void SetUp() override;
+  void TearDown() override;
+
+  engine::Context& ctx() { return *context(); }
+
+ private:
+  uint32_t messagesBefore_ = 0;
+};
+
+}  // namespace testing_gpu

@@ -1,0 +1,536 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/error.h"
+#include "engine/gltf.h"
+#include "engine/scene.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Small glTFs written by tests/data/gltf/make_test_gltfs.py (see its docstrings).
+const fs::path kGltfData = fs::path(VSGL_TEST_DATA) / "gltf";
+
+// A fresh directory under the system temp dir, removed with everything in it.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = fs::temp_directory_path() /
+            ("vsgl_gltf_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::vector<uint8_t> readBytes(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream file(path, std::ios::binary);
+  file.write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string readText(const fs::path& path) {
+  const std::vector<uint8_t> bytes = readBytes(path);
+  return {bytes.begin(), bytes.end()};
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  writeBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
+}
+
+std::vector<uint8_t> base64Decode(const std::string& text) {
+  std::vector<uint8_t> out;
+  uint32_t bits = 0;
+  int count = 0;
+  for (char c : text) {
+    int value;
+    if (c >= 'A' && c <= 'Z') value = c - 'A';
+    else if (c >= 'a' && c <= 'z') value = c - 'a' + 26;
+    else if (c >= '0' && c <= '9') value = c - '0' + 52;
+    else if (c == '+') value = 62;
+    else if (c == '/') value = 63;
+    else continue;  // '=' padding
+    bits = (bits << 6) | static_cast<uint32_t>(value);
+    count += 6;
+    if (count >= 8) {
+      count -= 8;
+      out.push_back(static_cast<uint8_t>((bits >> count) & 0xFF));
+    }
+  }
+  return out;
+}
+
+std::vector<uint8_t> decodeDataUri(const std::string& uri) {
+  return base64Decode(uri.substr(uri.find(',') + 1));
+}
+
+void appendU32(std::vector<uint8_t>& out, uint32_t value) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(value >> (8 * i)));
+}
+
+// Converts a .gltf whose buffer 0 is a data URI into a .glb: the buffer becomes the BIN chunk,
+// and data-URI images move into it behind bufferViews (the way exporters embed images).
+void convertToGlb(const fs::path& gltfPath, const fs::path& glbPath) {
+  json gltf = json::parse(readText(gltfPath));
+  std::vector<uint8_t> bin = decodeDataUri(gltf["buffers"][0]["uri"]);
+  gltf["buffers"][0].erase("uri");
+  if (gltf.contains("images")) {
+    for (json& image : gltf["images"]) {
+      const std::string uri = image["uri"];
+      if (uri.rfind("data:", 0) != 0) continue;
+      const std::vector<uint8_t> bytes = decodeDataUri(uri);
+      while (bin.size() % 4 != 0) bin.push_back(0);
+      gltf["bufferViews"].push_back(
+          {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes.size()}});
+      bin.insert(bin.end(), bytes.begin(), bytes.end());
+      image.erase("uri");
+      image["bufferView"] = gltf["bufferViews"].size() - 1;
+      image["mimeType"] = "image/png";
+    }
+  }
+  gltf["buffers"][0]["byteLength"] = bin.size();
+  std::string text = gltf.dump();
+  while (text.size() % 4 != 0) text += ' ';
+  while (bin.size() % 4 != 0) bin.push_back(0);
+
+  std::vector<uint8_t> glb;
+  appendU32(glb, 0x46546C67);  // "glTF"
+  appendU32(glb, 2);
+  appendU32(glb, static_cast<uint32_t>(12 + 8 + text.size() + 8 + bin.size()));
+  appendU32(glb, static_cast<uint32_t>(text.size()));
+  appendU32(glb, 0x4E4F534A);  // "JSON"
+  glb.insert(glb.end(), text.begin(), text.end());
+  appendU32(glb, static_cast<uint32_t>(bin.size()));
+  appendU32(glb, 0x004E4942);  // "BIN\0"
+  glb.insert(glb.end(), bin.begin(), bin.end());
+  writeBytes(glbPath, glb);
+}
+
+// Loading `path` must throw engine::Error: one line, naming the file, containing `phrase`.
+void expectLoadError(const fs::path& path, const std::string& phrase) {
+  SCOPED_TRACE(path.string());
+  try {
+    engine::loadGltf(path.string());
+    ADD_FAILURE() << "no error for " << path;
+  } catch (const engine::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
+    EXPECT_NE(message.find(phrase), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.find('\r'), std::string::npos) << message;
+  }
+}
+
+// Either a clean load or an engine::Error; anything else (or a crash) fails.
+void expectLoadsOrClean(const fs::path& path) {
+  try {
+    engine::loadGltf(path.string());
+  } catch (const engine::Error& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+}
+
+void expectVec3Near(const glm::vec3& actual, const glm::vec3& expected, float tolerance = 1e-5f) {
+  EXPECT_NEAR(actual.x, expected.x, tolerance);
+  EXPECT_NEAR(actual.y, expected.y, tolerance);
+  EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+glm::vec3 corner(const engine::Scene& scene, uint32_t triangle, int k) {
+  return scene.positions[scene.indices[3 * triangle + static_cast<uint32_t>(k)]];
+}
+
+glm::vec3 geometricNormal(const engine::Scene& scene, uint32_t triangle) {
+  const glm::vec3 p0 = corner(scene, triangle, 0);
+  return glm::normalize(glm::cross(corner(scene, triangle, 1) - p0, corner(scene, triangle, 2) - p0));
+}
+
+TEST(GltfLoader, TriangleWithSpotLightAndCamera) {
+  const fs::path path = kGltfData / "triangle_spot.gltf";
+  const engine::Scene scene = engine::loadGltf(path.string());
+  EXPECT_EQ(scene.source, path.string());
+  ASSERT_EQ(scene.triangleCount(), 1u);
+  ASSERT_EQ(scene.positions.size(), 3u);
+  expectVec3Near(corner(scene, 0, 0), {0, 0, 0});
+  expectVec3Near(corner(scene, 0, 1), {1, 0, 0});
+  expectVec3Near(corner(scene, 0, 2), {0, 1, 0});
+  for (const glm::vec3& n : scene.normals) expectVec3Near(n, {0, 0, 1});
+  EXPECT_EQ(scene.uvs[scene.indices[1]], glm::vec2(1, 0));
+
+  ASSERT_EQ(scene.materials.size(), 1u);  // every primitive has a material: no default added
+  const engine::Material& m = scene.materials[0];
+  EXPECT_EQ(m.name, "paint");
+  EXPECT_EQ(m.baseColorFactor, glm::vec4(0.8f, 0.2f, 0.1f, 1.0f));
+  EXPECT_FLOAT_EQ(m.metallicFactor, 0.25f);
+  EXPECT_FLOAT_EQ(m.roughnessFactor, 0.4f);
+  EXPECT_EQ(m.baseColorTexture, -1);
+  EXPECT_TRUE(m.doubleSided);
+  EXPECT_EQ(scene.triangleMaterial, std::vector<uint32_t>{0});
+
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const engine::Light& light = scene.lights[0];
+  EXPECT_EQ(light.name, "spot");
+  EXPECT_EQ(light.type, engine::LightType::Spot);
+  expectVec3Near(light.position, {0, 0, 2});
+  expectVec3Near(light.direction, {0, 0, -1});
+  expectVec3Near(light.color, {1.0f, 0.9f, 0.8f});
+  EXPECT_FLOAT_EQ(light.intensity, 20.0f);
+  EXPECT_FLOAT_EQ(light.range, 10.0f);
+  EXPECT_FLOAT_EQ(light.innerConeAngle, 0.3f);
+  EXPECT_FLOAT_EQ(light.outerConeAngle, 0.5f);
+
+  ASSERT_EQ(scene.cameras.size(), 1u);
+  const engine::Camera& camera = scene.cameras[0];
+  EXPECT_EQ(camera.name, "cam");
+  EXPECT_TRUE(camera.perspective);
+  EXPECT_FLOAT_EQ(camera.yfov, 0.7f);
+  EXPECT_FLOAT_EQ(camera.aspectRatio, 1.5f);
+  EXPECT_FLOAT_EQ(camera.znear, 0.1f);
+  EXPECT_EQ(camera.zfar, 0.0f);  // absent = infinite
+  EXPECT_EQ(camera.cameraToWorld, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 5)));
+}
+
+TEST(GltfLoader, NodeHierarchyBakesWorldTransforms) {
+  const engine::Scene scene = engine::loadGltf((kGltfData / "hierarchy.gltf").string());
+  // Parent: translate (1,2,3) * rotate 90 deg about +Y * scale 2; child: translate (1,0,0).
+  // Rotating (x,y,z) by 90 deg about +Y gives (z, y, -x).
+  const auto expected = [](glm::vec3 p) {
+    const glm::vec3 q = 2.0f * (p + glm::vec3(1, 0, 0));
+    return glm::vec3(q.z, q.y, -q.x) + glm::vec3(1, 2, 3);
+  };
+  ASSERT_EQ(scene.triangleCount(), 2u);  // the child instance, then the matrix-node instance
+  const glm::vec3 triangle[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  for (int k = 0; k < 3; ++k) {
+    expectVec3Near(corner(scene, 0, k), expected(triangle[k]));
+    expectVec3Near(corner(scene, 1, k), triangle[k] + glm::vec3(0, 0, -10));
+  }
+  expectVec3Near(expected(triangle[0]), {1, 2, 1});  // the formula itself, worked by hand
+  for (int k = 0; k < 3; ++k) {
+    expectVec3Near(scene.normals[scene.indices[static_cast<size_t>(k)]], {1, 0, 0});
+    expectVec3Near(scene.normals[scene.indices[3 + static_cast<size_t>(k)]], {0, 0, 1});
+  }
+  // No material on the primitive: the documented default is appended once.
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(scene.materials[0].baseColorFactor, glm::vec4(1.0f));
+  EXPECT_EQ(scene.materials[0].metallicFactor, 0.0f);
+  EXPECT_EQ(scene.materials[0].roughnessFactor, 0.5f);
+  EXPECT_EQ(scene.triangleMaterial, (std::vector<uint32_t>{0, 0}));
+
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].type, engine::LightType::Point);
+  EXPECT_FLOAT_EQ(scene.lights[0].intensity, 5.0f);
+  expectVec3Near(scene.lights[0].color, {1, 1, 1});
+  expectVec3Near(scene.lights[0].position, {1, 2, 3});
+  expectVec3Near(scene.lights[0].direction, {-1, 0, 0});  // -Z rotated
+
+  ASSERT_EQ(scene.cameras.size(), 1u);
+  const engine::Camera& camera = scene.cameras[0];
+  EXPECT_FALSE(camera.perspective);
+  EXPECT_FLOAT_EQ(camera.xmag, 2.0f);
+  EXPECT_FLOAT_EQ(camera.ymag, 1.5f);
+  EXPECT_FLOAT_EQ(camera.znear, 0.5f);
+  EXPECT_FLOAT_EQ(camera.zfar, 50.0f);
+  // The parent's scale 2 is removed: a rotation plus the translation.
+  expectVec3Near(glm::vec3(camera.cameraToWorld[0]), {0, 0, -1});
+  expectVec3Near(glm::vec3(camera.cameraToWorld[1]), {0, 1, 0});
+  expectVec3Near(glm::vec3(camera.cameraToWorld[2]), {1, 0, 0});
+  expectVec3Near(glm::vec3(camera.cameraToWorld[3]), {1, 2, 3});
+}
+
+TEST(GltfLoader, GeneratesAreaWeightedNormals) {
+  const engine::Scene scene = engine::loadGltf((kGltfData / "no_normals.gltf").string());
+  ASSERT_EQ(scene.triangleCount(), 4u);
+  ASSERT_EQ(scene.positions.size(), 8u);
+  // Face normals (cross products, length = twice the area): A = (-1,2,0) per triangle, B =
+  // (1,1,0). The ridge vertices are duplicated but share positions, so each ridge position sums
+  // every triangle touching it: (0,1,0) touches A twice and B once, (0,1,-1) A once and B twice.
+  const glm::vec3 faceA = glm::normalize(glm::vec3(-1, 2, 0));
+  const glm::vec3 faceB = glm::normalize(glm::vec3(1, 1, 0));
+  const glm::vec3 ridgeFront = glm::normalize(glm::vec3(-1, 5, 0));
+  const glm::vec3 ridgeBack = glm::normalize(glm::vec3(1, 4, 0));
+  const glm::vec3 expected[8] = {faceA, faceA, ridgeFront, ridgeBack,
+                                 ridgeFront, ridgeBack, faceB, faceB};
+  for (size_t v = 0; v < 8; ++v) {
+    SCOPED_TRACE(v);
+    expectVec3Near(scene.normals[v], expected[v]);
+  }
+  for (const glm::vec2& uv : scene.uvs) EXPECT_EQ(uv, glm::vec2(0.0f));
+}
+
+TEST(GltfLoader, StripsAndFansBecomeCounterClockwiseTriangles) {
+  const engine::Scene scene = engine::loadGltf((kGltfData / "strip_fan.gltf").string());
+  ASSERT_EQ(scene.triangleCount(), 4u);
+  float area = 0.0f;
+  for (uint32_t t = 0; t < 4; ++t) {
+    expectVec3Near(geometricNormal(scene, t), {0, 0, 1});
+    const glm::vec3 p0 = corner(scene, t, 0);
+    area += 0.5f * glm::length(glm::cross(corner(scene, t, 1) - p0, corner(scene, t, 2) - p0));
+  }
+  EXPECT_NEAR(area, 2.0f, 1e-6f);  // two unit squares
+}
+
+TEST(GltfLoader, MirroredNodeFlipsWinding) {
+  const engine::Scene scene = engine::loadGltf((kGltfData / "mirrored.gltf").string());
+  ASSERT_EQ(scene.triangleCount(), 1u);
+  expectVec3Near(scene.positions[1], {-1, 0, 0});
+  // Without the flip the mirrored triangle would be clockwise seen from +Z.
+  expectVec3Near(geometricNormal(scene, 0), {0, 0, 1});
+  for (const glm::vec3& n : scene.normals) expectVec3Near(n, {0, 0, 1});
+}
+
+void expectCheckerTexture(const engine::Texture& texture) {
+  ASSERT_EQ(texture.width, 2);
+  ASSERT_EQ(texture.height, 2);
+  const std::vector<uint8_t> expected = {255, 0, 0, 255, 0, 255, 0, 255,
+                                         0, 0, 255, 255, 255, 255, 255, 255};
+  EXPECT_EQ(texture.rgba8, expected);
+}
+
+TEST(GltfLoader, DecodesTexturesIndexedLikeImages) {
+  const fs::path path = kGltfData / "textured.gltf";
+  const engine::Scene scene = engine::loadGltf(path.string());
+  ASSERT_EQ(scene.textures.size(), 2u);
+  expectCheckerTexture(scene.textures[0]);
+  expectCheckerTexture(scene.textures[1]);
+  EXPECT_EQ(scene.textures[0].name, "checker2x2.png");
+  EXPECT_EQ(scene.textures[1].name, "textured.gltf#image1");
+  // glTF texture 0 uses image 1, texture 1 uses image 0.
+  EXPECT_EQ(scene.materials[0].baseColorTexture, 1);
+  EXPECT_EQ(scene.materials[0].metallicRoughnessTexture, 0);
+  // Normalized u16 UVs.
+  EXPECT_EQ(scene.uvs[1], glm::vec2(1, 0));
+  EXPECT_EQ(scene.uvs[2], glm::vec2(0, 1));
+}
+
+TEST(GltfLoader, GlbLoadsLikeGltf) {
+  TempDir dir;
+  for (const char* name : {"hierarchy", "textured"}) {
+    SCOPED_TRACE(name);
+    const fs::path gltfPath = kGltfData / (std::string(name) + ".gltf");
+    const fs::path glbPath = dir / (std::string(name) + ".glb");
+    convertToGlb(gltfPath, glbPath);
+    fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png",
+                  fs::copy_options::overwrite_existing);
+    const engine::Scene a = engine::loadGltf(gltfPath.string());
+    const engine::Scene b = engine::loadGltf(glbPath.string());
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.normals, b.normals);
+    EXPECT_EQ(a.uvs, b.uvs);
+    EXPECT_EQ(a.indices, b.indices);
+    ASSERT_EQ(a.textures.size(), b.textures.size());
+    for (size_t i = 0; i < a.textures.size(); ++i) EXPECT_EQ(a.textures[i].rgba8, b.textures[i].rgba8);
+    EXPECT_EQ(a.lights.size(), b.lights.size());
+    EXPECT_EQ(a.cameras.size(), b.cameras.size());
+  }
+  // The embedded image is named after the .glb.
+  EXPECT_EQ(engine::loadGltf((dir / "textured.glb").string()).textures[1].name,
+            "textured.glb#image1");
+}
+
+TEST(GltfWriter, WritesTexturesAsPngBesideTheGltf) {
+  engine::Scene scene = engine::loadGltf((kGltfData / "textured.gltf").string());
+  TempDir dir;
+  const fs::path path = dir / "out.gltf";
+  engine::writeGltf(scene, path.string());
+  EXPECT_TRUE(fs::is_regular_file(dir / "out_tex0.png"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "out_tex1.png"));
+  // Nothing but the .gltf and its textures: the temporary file was renamed into place.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 3);
+  // The buffer is embedded: the .gltf alone (plus PNGs) is the whole scene.
+  EXPECT_NE(readText(path).find("data:application/octet-stream;base64,"), std::string::npos);
+  const engine::Scene back = engine::loadGltf(path.string());
+  ASSERT_EQ(back.textures.size(), 2u);
+  expectCheckerTexture(back.textures[0]);
+  expectCheckerTexture(back.textures[1]);
+  EXPECT_EQ(back.textures[0].name, "out_tex0.png");
+  EXPECT_EQ(back.materials[0].baseColorTexture, 1);
+  EXPECT_EQ(back.materials[0].metallicRoughnessTexture, 0);
+  EXPECT_EQ(back.uvs, scene.uvs);
+}
+
+TEST(GltfWriter, RejectsInconsistentScenes) {
+  engine::Scene scene = engine::loadGltf((kGltfData / "triangle_spot.gltf").string());
+  scene.indices[2] = 7;
+  TempDir dir;
+  const fs::path path = dir / "bad.gltf";
+  EXPECT_THROW(engine::writeGltf(scene, path.string()), engine::Error);
+  EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(GltfLoaderErrors, MissingFileAndWrongExtension) {
+  expectLoadError(kGltfData / "no_such_file.gltf", "file not found");
+  expectLoadError(kGltfData / "no_such_file.glb", "file not found");
+  expectLoadError(kGltfData / "make_test_gltfs.py", "unsupported file extension '.py'");
+}
+
+TEST(GltfLoaderErrors, TruncatedAndMalformedJson) {
+  TempDir dir;
+  const std::string text = readText(kGltfData / "triangle_spot.gltf");
+  writeText(dir / "truncated.gltf", text.substr(0, text.size() / 2));
+  expectLoadError(dir / "truncated.gltf", "parse error");
+  writeText(dir / "malformed.gltf", R"({"asset": {"version": "2.0"}, "nodes": [ }, ])");
+  expectLoadError(dir / "malformed.gltf", "parse error");
+  writeText(dir / "empty.gltf", "");
+  expectLoadError(dir / "empty.gltf", "File is empty");
+}
+
+TEST(GltfLoaderErrors, TruncatedGlb) {
+  TempDir dir;
+  convertToGlb(kGltfData / "hierarchy.gltf", dir / "whole.glb");
+  const std::vector<uint8_t> glb = readBytes(dir / "whole.glb");
+  ASSERT_NO_THROW(engine::loadGltf((dir / "whole.glb").string()));
+  writeBytes(dir / "half.glb", std::vector<uint8_t>(glb.begin(), glb.begin() + glb.size() / 2));
+  expectLoadError(dir / "half.glb", "");
+  writeBytes(dir / "header.glb", std::vector<uint8_t>(glb.begin(), glb.begin() + 10));
+  expectLoadError(dir / "header.glb", "");
+  // Every cut, each a clean error.
+  for (size_t size = 0; size < glb.size(); size += 7) {
+    SCOPED_TRACE(size);
+    writeBytes(dir / "cut.glb", std::vector<uint8_t>(glb.begin(), glb.begin() + static_cast<long>(size)));
+    expectLoadError(dir / "cut.glb", "");
+  }
+}
+
+TEST(GltfLoaderErrors, BadBuffersAndIndices) {
+  expectLoadError(kGltfData / "bad_short_buffer.gltf", "do not fit in bufferView");
+  expectLoadError(kGltfData / "bad_index_out_of_range.gltf", "index 5 at position 2 is out of range");
+  expectLoadError(kGltfData / "bad_missing_buffer.gltf", "does_not_exist.bin");
+}
+
+TEST(GltfLoaderErrors, BadTextures) {
+  expectLoadError(kGltfData / "bad_missing_texture.gltf", "does_not_exist.png");
+  TempDir dir;
+  std::string text = readText(kGltfData / "bad_missing_texture.gltf");
+  text.replace(text.find("does_not_exist.png"), std::strlen("does_not_exist.png"), "garbage.png");
+  writeText(dir / "undecodable.gltf", text);
+  writeText(dir / "garbage.png", "this is not a PNG file at all");
+  expectLoadError(dir / "undecodable.gltf", "garbage.png");
+}
+
+TEST(GltfLoaderErrors, UnsupportedContent) {
+  expectLoadError(kGltfData / "bad_points.gltf",
+                  "mesh 'triangle' primitive 0: unsupported primitive mode 0 (only triangles)");
+  expectLoadError(kGltfData / "bad_no_lights.gltf", "scene has no lights (KHR_lights_punctual)");
+  expectLoadError(kGltfData / "bad_spot_cone.gltf", "light 'badspot'");
+  expectLoadError(kGltfData / "bad_spot_cone.gltf", "innerConeAngle");
+}
+
+// Edits of a valid file, each of which must be rejected with the given phrase.
+TEST(GltfLoaderErrors, BadReferencesAndValues) {
+  const json original = json::parse(readText(kGltfData / "triangle_spot.gltf"));
+  struct Case {
+    const char* name;
+    std::function<void(json&)> edit;
+    const char* phrase;
+  };
+  const Case cases[] = {
+      {"mesh", [](json& g) { g["nodes"][0]["mesh"] = 7; }, "mesh 7 does not exist"},
+      {"camera", [](json& g) { g["nodes"][2]["camera"] = 3; }, "camera 3 does not exist"},
+      {"material", [](json& g) { g["meshes"][0]["primitives"][0]["material"] = 4; },
+       "material 4 does not exist"},
+      {"light", [](json& g) { g["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = 9; },
+       "light 9 does not exist"},
+      {"node", [](json& g) { g["scenes"][0]["nodes"].push_back(12); }, "node 12 does not exist"},
+      {"twice", [](json& g) { g["scenes"][0]["nodes"].push_back(0); }, "reached twice"},
+      {"cycle", [](json& g) { g["nodes"][0]["children"] = {0}; }, "reached twice"},
+      {"type", [](json& g) { g["accessors"][0]["type"] = "VEC2"; }, "expected type VEC3"},
+      {"component", [](json& g) { g["accessors"][0]["componentType"] = 5121; },
+       "unsupported componentType 5121"},
+      {"stride", [](json& g) { g["bufferViews"][0]["byteStride"] = 8; }, "byteStride"},
+      {"offset", [](json& g) { g["accessors"][0]["byteOffset"] = 4; }, "do not fit"},
+      {"sparse",
+       [](json& g) {
+         g["accessors"][0]["sparse"] = {
+             {"count", 1},
+             {"indices", {{"bufferView", 0}, {"componentType", 5125}}},
+             {"values", {{"bufferView", 0}}}};
+       },
+       "sparse accessors are not supported"},
+      {"mode", [](json& g) { g["meshes"][0]["primitives"][0]["mode"] = 1; },
+       "unsupported primitive mode 1"},
+      {"roughness",
+       [](json& g) { g["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 1.5; },
+       "roughnessFactor must lie in [0, 1]"},
+      {"texture",
+       [](json& g) {
+         g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 2}};
+       },
+       "texture 2 does not exist"},
+      {"yfov", [](json& g) { g["cameras"][0]["perspective"]["yfov"] = 4.0; }, "yfov"},
+      {"outer cone", [](json& g) { g["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"]["outerConeAngle"] = 2.0; },
+       "outerConeAngle"},
+      {"no triangles", [](json& g) { g["nodes"][0].erase("mesh"); }, "scene has no triangles"},
+      {"scene", [](json& g) { g["scene"] = 3; }, "scene 3 does not exist"},
+  };
+  TempDir dir;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    json gltf = original;
+    c.edit(gltf);
+    const fs::path path = dir / (std::string("edit_") + std::to_string(&c - cases) + ".gltf");
+    writeText(path, gltf.dump());
+    expectLoadError(path, c.phrase);
+  }
+}
+
+// Deterministic corruption of the JSON text and of the .glb bytes: every result must load or
+// fail with engine::Error, never crash (run under VSGL_SANITIZE to catch silent overreads).
+TEST(GltfLoaderErrors, CorruptedFilesNeverCrash) {
+  TempDir dir;
+  const std::string text = readText(kGltfData / "hierarchy.gltf");
+  uint32_t state = 2024u;
+  const auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return state >> 8;
+  };
+  const char replacements[] = {'9', '0', '-', '"', '}', ']', ',', 'x', '5'};
+  for (int i = 0; i < 150; ++i) {
+    std::string mutated = text;
+    mutated[next() % mutated.size()] = replacements[next() % sizeof(replacements)];
+    writeText(dir / "mutated.gltf", mutated);
+    expectLoadsOrClean(dir / "mutated.gltf");
+  }
+  convertToGlb(kGltfData / "textured.gltf", dir / "textured.glb");
+  fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png");
+  const std::vector<uint8_t> glb = readBytes(dir / "textured.glb");
+  for (int i = 0; i < 150; ++i) {
+    std::vector<uint8_t> mutated = glb;
+    mutated[next() % mutated.size()] = static_cast<uint8_t>(next());
+    writeBytes(dir / "mutated.glb", mutated);
+    expectLoadsOrClean(dir / "mutated.glb");
+  }
+}
+
+}  // namespace
