@@ -114,9 +114,11 @@ class ProceduralScene {
   Scene scene_;
 };
 
-// Cornell-style box: x in [-1, 1], y in [0, 2], z in [-1, 1], open towards +Z.
+// Cornell-style box, widened for 16:9 images: x in [-1.6, 1.6], y in [0, 2], z in [-1, 1], open
+// towards +Z.
 Scene makeCornell() {
-  constexpr float kHalf = 1.0f;        // half the room size, metres
+  constexpr float kHalfWidth = 1.6f;   // half the room width (x), metres
+  constexpr float kHalf = 1.0f;        // half the room depth (z), metres
   constexpr float kHeight = 2.0f;
   constexpr float kWallCell = 0.2f;    // 10 x 10 cells per wall
   constexpr float kBoxCell = 0.15f;
@@ -137,7 +139,8 @@ Scene makeCornell() {
   constexpr float kSpotInner = 0.45f;      // radians
   constexpr float kSpotOuter = 0.6f;       // radians
   // The camera sits outside the open face; with this yfov the opening fills the frame
-  // vertically, so the view never leaves the box.
+  // vertically, and the widened room fills it horizontally up to a 16:9 aspect, so the view
+  // never leaves the box.
   constexpr glm::vec3 kEye(0.0f, 1.0f, 3.4f);
   constexpr glm::vec3 kLookAt(0.0f, 1.0f, 0.0f);
   constexpr float kYfov = 0.69f;
@@ -148,12 +151,12 @@ Scene makeCornell() {
   const uint32_t green = s.addMaterial("glossy green", kGreen, kGlossyWallRoughness, 0.0f);
   const uint32_t floor = s.addMaterial("glossy floor", kFloorGrey, kGlossyFloorRoughness, 0.0f);
 
-  const float w = 2.0f * kHalf;
-  s.addRect({-kHalf, 0.0f, kHalf}, {w, 0.0f, 0.0f}, {0.0f, 0.0f, -w}, floor, kWallCell);
-  s.addRect({-kHalf, kHeight, -kHalf}, {w, 0.0f, 0.0f}, {0.0f, 0.0f, w}, white, kWallCell);
-  s.addRect({-kHalf, 0.0f, -kHalf}, {w, 0.0f, 0.0f}, {0.0f, kHeight, 0.0f}, white, kWallCell);
-  s.addRect({-kHalf, 0.0f, kHalf}, {0.0f, 0.0f, -w}, {0.0f, kHeight, 0.0f}, red, kWallCell);
-  s.addRect({kHalf, 0.0f, -kHalf}, {0.0f, 0.0f, w}, {0.0f, kHeight, 0.0f}, green, kWallCell);
+  const float w = 2.0f * kHalfWidth, d = 2.0f * kHalf;
+  s.addRect({-kHalfWidth, 0.0f, kHalf}, {w, 0.0f, 0.0f}, {0.0f, 0.0f, -d}, floor, kWallCell);
+  s.addRect({-kHalfWidth, kHeight, -kHalf}, {w, 0.0f, 0.0f}, {0.0f, 0.0f, d}, white, kWallCell);
+  s.addRect({-kHalfWidth, 0.0f, -kHalf}, {w, 0.0f, 0.0f}, {0.0f, kHeight, 0.0f}, white, kWallCell);
+  s.addRect({-kHalfWidth, 0.0f, kHalf}, {0.0f, 0.0f, -d}, {0.0f, kHeight, 0.0f}, red, kWallCell);
+  s.addRect({kHalfWidth, 0.0f, -kHalf}, {0.0f, 0.0f, d}, {0.0f, kHeight, 0.0f}, green, kWallCell);
   s.addBox({-0.35f, 0.0f, -0.35f}, {0.6f, 1.2f, 0.6f}, 0.3f, white, kBoxCell);   // tall
   s.addBox({0.4f, 0.0f, 0.3f}, {0.6f, 0.6f, 0.6f}, -0.3f, white, kBoxCell);      // short
 
@@ -183,7 +186,8 @@ Scene makeAtrium() {
   constexpr glm::vec3 kConcrete(0.6f, 0.6f, 0.6f);
   // Sun 53 degrees above the horizon. Through the skylight it lands on the floor around the
   // right column row (1.7 m to +X, 1.5 m to -Z of the opening), so the columns cast shadows and
-  // most of the hall is lit only indirectly. 3 W/m^2 (a dim, overcast-scale sun).
+  // most of the hall is lit only indirectly. 3 W/m^2 on a plane facing the sun: far below the
+  // real sun, chosen so the sunlit patch is exposed like the spot-lit scenes.
   constexpr glm::vec3 kSunDirection(0.45f, -0.8f, -0.4f);
   constexpr float kSunIlluminance = 3.0f;
   constexpr glm::vec3 kEye(0.0f, 1.6f, 3.6f);

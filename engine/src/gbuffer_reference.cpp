@@ -59,7 +59,7 @@ glm::dvec4 texel(const Texture& t, int64_t x, int64_t y, bool srgb) {
 
 // Bilinear filtering with repeat addressing, Vulkan's texel-centre convention (u * size - 0.5).
 glm::dvec4 sampleBilinear(const Texture& t, glm::dvec2 uv, bool srgb) {
-  double x = uv.x * t.width - 0.5, y = uv.y * t.height - 0.5;
+  double x = uv.x * t.width, y = uv.y * t.height - 0.5;
   double x0 = std::floor(x), y0 = std::floor(y);
   double fx = x - x0, fy = y - y0;
   auto ix = static_cast<int64_t>(x0), iy = static_cast<int64_t>(y0);

@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -27,6 +28,10 @@ namespace engine {
 namespace {
 
 constexpr const char* kLightsExtension = "KHR_lights_punctual";
+// Extensions a file may list as required. Emissive strength only scales emission, which this
+// module ignores anyway (see scene.h).
+constexpr std::string_view kUnderstoodExtensions[] = {"KHR_lights_punctual",
+                                                      "KHR_materials_emissive_strength"};
 
 // tinygltf reports several problems as newline-separated lines; our errors are one line.
 std::string oneLine(const std::string& text) {
@@ -221,6 +226,12 @@ class SceneBuilder {
       : path_(path), model_(model), scene_(scene) {}
 
   void build() {
+    for (const std::string& extension : model_.extensionsRequired) {
+      if (std::find(std::begin(kUnderstoodExtensions), std::end(kUnderstoodExtensions),
+                    extension) == std::end(kUnderstoodExtensions)) {
+        fail("requires unsupported extension '" + extension + "'");
+      }
+    }
     convertMaterials();
     convertLights();
     convertCameras();
@@ -450,7 +461,7 @@ class SceneBuilder {
     while (!stack.empty()) {
       const Pending pending = stack.back();
       stack.pop_back();
-      const tinygltf::Node& node = at(model_.nodes, pending.node, "node", "scene");
+      const tinygltf::Node& node = at(model_.nodes, pending.node, "node", "node hierarchy");
       const auto nodeIndex = static_cast<size_t>(pending.node);
       const std::string where = label("node", node.name, nodeIndex);
       if (visited[nodeIndex]) fail(where + " is reached twice (the node hierarchy must be a tree)");

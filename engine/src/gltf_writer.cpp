@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -160,6 +161,11 @@ class GltfBuilder {
         }
       }
     }
+    for (const Light& light : scene_.lights) {
+      if (!(glm::length(light.direction) > 0.0f)) {
+        fail("light '" + light.name + "' has no direction");
+      }
+    }
     for (const Camera& camera : scene_.cameras) {
       if (!camera.perspective && !(camera.zfar > camera.znear)) {
         fail("orthographic camera '" + camera.name + "' needs zfar > znear");
@@ -176,7 +182,7 @@ class GltfBuilder {
       nodes.push_back({{"mesh", 0}});
     }
     buffer_.writeInto(gltf);
-    gltf["materials"] = buildMaterials();
+    if (!scene_.materials.empty()) gltf["materials"] = buildMaterials();
     if (!imageUris.empty()) {
       // Written so other viewers match the loader's fixed assumption (see gltf.h).
       gltf["samplers"] = json::array({{{"magFilter", kLinear},
@@ -216,11 +222,13 @@ class GltfBuilder {
       gltf["extensions"] = {{"KHR_lights_punctual", {{"lights", std::move(lights)}}}};
       gltf["extensionsUsed"] = json::array({"KHR_lights_punctual"});
     }
-    json rootNodes = json::array();
-    for (size_t i = 0; i < nodes.size(); ++i) rootNodes.push_back(i);
-    gltf["nodes"] = std::move(nodes);
-    gltf["scenes"] = json::array({{{"nodes", std::move(rootNodes)}}});
-    gltf["scene"] = 0;
+    if (!nodes.empty()) {  // glTF arrays, when present, must not be empty
+      json rootNodes = json::array();
+      for (size_t i = 0; i < nodes.size(); ++i) rootNodes.push_back(i);
+      gltf["nodes"] = std::move(nodes);
+      gltf["scenes"] = json::array({{{"nodes", std::move(rootNodes)}}});
+      gltf["scene"] = 0;
+    }
     return gltf;
   }
 

@@ -17,7 +17,7 @@ Bounds Scene::bounds() const {
 
 Camera defaultCamera(const Scene& scene) {
   // Frames the bounding sphere of the bounding box: at distance r / sin(yfov / 2) the sphere
-  // touches the top and bottom of the view, whatever the aspect ratio is wider than 1.
+  // touches the top and bottom of the view, so any aspect ratio >= 1 shows all of it.
   constexpr float kYfov = 0.8f;
   constexpr float kMinRadius = 1e-3f;  // a point-like scene still gets a usable camera
   const Bounds b = scene.bounds();

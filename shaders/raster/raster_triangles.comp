@@ -20,19 +20,32 @@ layout(std430, binding = 2) buffer Visibility { uint64_t visibility[]; };
 layout(push_constant) uniform Push { RasterTrianglesPush pc; };
 
 shared uint sPrefix[RASTER_GROUP_SIZE];  // inclusive prefix sum of pixel-box areas
-shared uint sTriangle[RASTER_GROUP_SIZE];
+// The group's triangles, staged once: the pixel loop then reads shared memory instead of
+// gathering 48-byte structs from the storage buffer for every pixel.
+shared ivec4 sP01[RASTER_GROUP_SIZE];    // p0.xy, p1.xy (fixed point)
+shared ivec4 sP2Box[RASTER_GROUP_SIZE];  // p2.xy, box origin x, box width
+shared vec4 sDepth[RASTER_GROUP_SIZE];   // z0, z1, z2, 1 / box width
+shared uvec2 sIdBoxY[RASTER_GROUP_SIZE]; // triangle id, box origin y
 
-int64_t edge(ivec2 a, ivec2 b, ivec2 p) {
+// Below this fixed-point extent (64 pixels) |b - a| and |p - a| stay under 2^15, so both edge
+// products fit in 31 bits and int32 arithmetic is exact; larger triangles use int64.
+const int kSmallExtent = 1 << 14;
+
+int64_t edge64(ivec2 a, ivec2 b, ivec2 p) {
   return int64_t(b.x - a.x) * int64_t(p.y - a.y) - int64_t(b.y - a.y) * int64_t(p.x - a.x);
+}
+
+int edge32(ivec2 a, ivec2 b, ivec2 p) {
+  return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
 }
 
 // 0 when samples on the edge a->b are inside, -1 when they are outside (E > 0 required).
 // With positive area in y-down screen space, interior is to the right of a->b walked
 // clockwise: a top edge runs in +x (d.y == 0, d.x > 0) and a left edge runs upwards (d.y < 0).
-int64_t fillBias(ivec2 a, ivec2 b) {
+int fillBias(ivec2 a, ivec2 b) {
   ivec2 d = b - a;
   bool topLeft = d.y < 0 || (d.y == 0 && d.x > 0);
-  return topLeft ? int64_t(0) : int64_t(-1);
+  return topLeft ? 0 : -1;
 }
 
 uvec2 unpackPixel(uint p) { return uvec2(p & 0xFFFFu, p >> 16); }
@@ -43,11 +56,16 @@ void main() {
   uint count = min(counters.triangleCount, pc.capacity);
   uint area = 0u;
   if (slot < count) {
-    uvec2 lo = unpackPixel(triangles[slot].bboxMin), hi = unpackPixel(triangles[slot].bboxMax);
-    area = (hi.x - lo.x + 1u) * (hi.y - lo.y + 1u);
+    RasterTriangle t = triangles[slot];
+    uvec2 lo = unpackPixel(t.bboxMin), hi = unpackPixel(t.bboxMax);
+    uint width = hi.x - lo.x + 1u;
+    area = width * (hi.y - lo.y + 1u);
+    sP01[lane] = ivec4(t.p0, t.p1);
+    sP2Box[lane] = ivec4(t.p2, int(lo.x), int(width));
+    sDepth[lane] = vec4(t.z0, t.z1, t.z2, 1.0 / float(width));
+    sIdBoxY[lane] = uvec2(t.triangleId, lo.y);
   }
   sPrefix[lane] = area;
-  sTriangle[lane] = slot;
   barrier();
   // Hillis-Steele inclusive scan; 6 steps for 64 lanes.
   for (uint offset = 1u; offset < RASTER_GROUP_SIZE; offset <<= 1) {
@@ -65,23 +83,37 @@ void main() {
       uint mid = (lo + hi) >> 1;
       if (sPrefix[mid] > k) hi = mid; else lo = mid + 1u;
     }
-    uint local = k - (lo > 0u ? sPrefix[lo - 1u] : 0u);
-    RasterTriangle t = triangles[sTriangle[lo]];
-    uvec2 boxLo = unpackPixel(t.bboxMin), boxHi = unpackPixel(t.bboxMax);
-    uint width = boxHi.x - boxLo.x + 1u;
-    uvec2 pixel = boxLo + uvec2(local % width, local / width);
-    ivec2 sample_ = ivec2(pixel) * int(RASTER_SUBPIXEL_SCALE) + int(RASTER_SUBPIXEL_SCALE) / 2;
+    int local = int(k - (lo > 0u ? sPrefix[lo - 1u] : 0u));
+    ivec4 p01 = sP01[lo], p2Box = sP2Box[lo];
+    vec4 depth = sDepth[lo];
+    // Row and column of `local` in the box without an integer division (scalar on CPUs):
+    // the float estimate is off by at most one row, which the correction fixes.
+    int width = p2Box.w;
+    int row = int((float(local) + 0.5) * depth.w);
+    int column = local - row * width;
+    if (column < 0) { row -= 1; column += width; }
+    else if (column >= width) { row += 1; column -= width; }
+    uvec2 pixel = uvec2(p2Box.z + column, sIdBoxY[lo].y + uint(row));
+    ivec2 s = ivec2(pixel) * int(RASTER_SUBPIXEL_SCALE) + int(RASTER_SUBPIXEL_SCALE) / 2;
 
-    int64_t e0 = edge(t.p1, t.p2, sample_);
-    int64_t e1 = edge(t.p2, t.p0, sample_);
-    int64_t e2 = edge(t.p0, t.p1, sample_);
-    if (e0 + fillBias(t.p1, t.p2) < 0 || e1 + fillBias(t.p2, t.p0) < 0 ||
-        e2 + fillBias(t.p0, t.p1) < 0)
+    ivec2 p0 = p01.xy, p1 = p01.zw, p2 = p2Box.xy;
+    ivec2 extent = max(max(p0, p1), p2) - min(min(p0, p1), p2);
+    int64_t e0, e1, e2;
+    if (max(extent.x, extent.y) < kSmallExtent) {
+      e0 = edge32(p1, p2, s);
+      e1 = edge32(p2, p0, s);
+      e2 = edge32(p0, p1, s);
+    } else {
+      e0 = edge64(p1, p2, s);
+      e1 = edge64(p2, p0, s);
+      e2 = edge64(p0, p1, s);
+    }
+    if (e0 + fillBias(p1, p2) < 0 || e1 + fillBias(p2, p0) < 0 || e2 + fillBias(p0, p1) < 0)
       continue;
-    precise float sum = float(e0) * t.z0 + float(e1) * t.z1 + float(e2) * t.z2;
+    precise float sum = float(e0) * depth.x + float(e1) * depth.y + float(e2) * depth.z;
     precise float z = sum / float(e0 + e1 + e2);
     if (!(z >= 0.0 && z <= 1.0)) continue;  // beyond the far plane (or NaN)
-    uint64_t packed = (uint64_t(floatBitsToUint(z)) << 32) | uint64_t(t.triangleId);
+    uint64_t packed = (uint64_t(floatBitsToUint(z)) << 32) | uint64_t(sIdBoxY[lo].x);
     atomicMin(visibility[pixel.y * pc.viewport.x + pixel.x], packed);
   }
 }

@@ -9,8 +9,11 @@
 #define LIGHT_DIRECTIONAL 0u
 #define LIGHT_POINT 1u
 #define LIGHT_SPOT 2u
-// Normal-offset shadow bias, in shadow-map texels at the receiver (Holbert 2011's idea).
-#define SHADOW_NORMAL_OFFSET_TEXELS 1.5
+// Normal-offset shadow bias, in shadow-map texels at the receiver. Moving the receiver by d along
+// its normal gains d / cos(theta) of depth margin against its own surface (theta = angle to the
+// light); the 3x3 PCF tap one texel up the slope plus half a texel of quantisation at each end
+// costs 2 texel tan(theta). So d >= 2 sin(theta) texels suffices at every angle; 2.5 adds slack.
+#define SHADOW_NORMAL_OFFSET_TEXELS 2.5
 
 SHARED_BEGIN
 

@@ -157,13 +157,15 @@ TEST_F(GBufferTest, CameraSeeingNothingGivesBackground) {
 }
 
 // A 4 x 4 m quad in the plane z = -2 facing a camera at the origin that looks down -Z, so it
-// fills the view. UVs (0,0) top left to (1,1) bottom right, as glTF's image orientation.
-Scene texturedQuad(engine::Texture baseColor, engine::Texture metallicRoughness, engine::Material m) {
+// fills the view. UVs run from (uv0, uv0) top left to (uv1, uv1) bottom right (glTF's image
+// orientation).
+Scene texturedQuad(engine::Texture baseColor, engine::Texture metallicRoughness, engine::Material m,
+                   float uv0 = 0.0f, float uv1 = 1.0f) {
   Scene s;
   s.source = "test:textured quad";
   s.positions = {{-2, 2, -2}, {2, 2, -2}, {2, -2, -2}, {-2, -2, -2}};
   s.normals.assign(4, glm::vec3(0, 0, 1));
-  s.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  s.uvs = {{uv0, uv0}, {uv1, uv0}, {uv1, uv1}, {uv0, uv1}};
   s.indices = {0, 3, 2, 0, 2, 1};  // counter-clockwise seen from +Z
   s.triangleMaterial = {0, 0};
   s.textures = {std::move(baseColor), std::move(metallicRoughness)};
@@ -187,12 +189,32 @@ engine::Texture makeTexture(const std::string& name, int size, auto texelAt) {
   return t;
 }
 
-// Half the distance between the decoded values of the codes next to `code`: a filtered result
-// closer than this to the code's own value can only have come from that code.
+// Half the distance between the decoded values of the codes next to `code`: how far a
+// correct sampler may land from the code's value. sRGB decoding may err that much (the D3D10
+// rule, which lavapipe's polynomial meets with +-0.35 code: mesa's lp_bld_format_srgb.c), and
+// lavapipe filters UNORM8 textures in 8-bit fixed point, rounding the result to 8 bits.
 double halfCodeStep(int code, bool srgb) {
   auto decode = [&](double c) { return srgb ? engine::srgbToLinear(c / 255.0) : c / 255.0; };
   return 0.5 * std::min(code > 0 ? decode(code) - decode(code - 1) : 1.0,
                         code < 255 ? decode(code + 1) - decode(code) : 1.0);
+}
+
+TEST_F(GBufferTest, BackFacesTurnTheirNormalToTheViewer) {
+  // The quad from behind: its front and its vertex normals point to +Z, away from a camera
+  // at z = -6 looking towards +Z, so both sides must flip the normal to -Z.
+  const glm::u8vec4 kWhite(255, 255, 255, 255);
+  Scene scene = texturedQuad(makeTexture("base", 1, [&](int, int) { return kWhite; }),
+                             makeTexture("mr", 1, [&](int, int) { return kWhite; }), {});
+  glm::mat4 viewMatrix = engine::lookAlong({0.0f, 0.0f, -6.0f}, {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f});
+  engine::View view = engine::makeView(viewMatrix, engine::perspectiveVulkan(0.8f, 1.5f, 0.05f, 0.0f), kWidth, kHeight);
+  GpuResolve gpu = resolve(scene, view);
+  GBufferData cpu = engine::resolveGBufferReference(scene, view, gpu.visibility);
+  for (size_t i = 0; i < cpu.samples.size(); ++i) {
+    ASSERT_FALSE(cpu.samples[i].background()) << "the quad fills the view";
+    ASSERT_LE(angleBetween(cpu.samples[i].normal, glm::dvec3(0, 0, -1)), 1e-12) << "pixel " << i;
+  }
+  Comparison c = compare(gpu, cpu);
+  EXPECT_EQ(c.failures, 0u) << "first: " << c.firstFailure;
 }
 
 TEST_F(GBufferTest, ConstantTexturesMultiplyFactors) {
@@ -215,41 +237,99 @@ TEST_F(GBufferTest, ConstantTexturesMultiplyFactors) {
   const double metallic = m.metallicFactor * (kMr.b / 255.0);
   const glm::dvec3 diffuse = base * (1.0 - metallic);
   const glm::dvec3 f0 = glm::mix(glm::dvec3(0.04), base, metallic);
-  // GPU: the filtered texel must decode to within half a code step of its code (the 8-bit
-  // quantisation), scaled by the factors, then stored as fp16.
-  auto tolerance = [&](double expected, double factorStep) {
-    return factorStep + kHalfRelative * std::abs(expected) + kHalfAbsolute;
+  // The GPU: the 8-bit quantisation (half a code, scaled by the factors and carried through
+  // the linear metallic mix), then fp16 storage.
+  auto tolerance = [&](double expected, double textureError) {
+    return textureError + kHalfRelative * std::abs(expected) + kHalfAbsolute;
   };
-  const double roughnessStep = m.roughnessFactor * halfCodeStep(kMr.g, false);
-  const double metallicStep = m.metallicFactor * halfCodeStep(kMr.b, false);
+  const double roughnessError = m.roughnessFactor * halfCodeStep(kMr.g, false);
+  const double metallicError = m.metallicFactor * halfCodeStep(kMr.b, false);
 
-  size_t checked = 0;
   double maxError = 0.0;
   for (size_t i = 0; i < cpu.samples.size(); ++i) {
     const GBufferSample& r = cpu.samples[i];
     const GBufferSample& g = gpu.gbuffer.samples[i];
     ASSERT_FALSE(r.background()) << "the quad fills the view";
-    ++checked;
     // The reference filters the same constant texels: equal up to double rounding.
-    EXPECT_NEAR(r.roughness, roughness, 1e-12);
-    EXPECT_NEAR(r.metallic, metallic, 1e-12);
+    ASSERT_NEAR(r.roughness, roughness, 1e-12);
+    ASSERT_NEAR(r.metallic, metallic, 1e-12);
     for (int k = 0; k < 3; ++k) {
-      EXPECT_NEAR(r.diffuse[k], diffuse[k], 1e-12);
-      EXPECT_NEAR(r.f0[k], f0[k], 1e-12);
-      // Both diffuse and F0 are linear in base colour and metallic.
-      const double baseStep = m.baseColorFactor[k] * halfCodeStep(kBase[k], true);
-      const double diffuseStep = baseStep * (1.0 - metallic) + std::abs(base[k]) * metallicStep;
-      const double f0Step = baseStep * metallic + std::abs(base[k] - 0.04) * metallicStep;
-      ASSERT_NEAR(g.diffuse[k], diffuse[k], tolerance(diffuse[k], diffuseStep)) << "pixel " << i;
-      ASSERT_NEAR(g.f0[k], f0[k], tolerance(f0[k], f0Step)) << "pixel " << i;
+      ASSERT_NEAR(r.diffuse[k], diffuse[k], 1e-12);
+      ASSERT_NEAR(r.f0[k], f0[k], 1e-12);
+      const double baseError = m.baseColorFactor[k] * halfCodeStep(kBase[k], true);
+      const double diffuseError = baseError * (1.0 - metallic) + std::abs(base[k]) * metallicError;
+      const double f0Error = baseError * metallic + std::abs(base[k] - 0.04) * metallicError;
+      ASSERT_NEAR(g.diffuse[k], diffuse[k], tolerance(diffuse[k], diffuseError)) << "pixel " << i;
+      ASSERT_NEAR(g.f0[k], f0[k], tolerance(f0[k], f0Error)) << "pixel " << i;
       maxError = std::max({maxError, std::abs(g.diffuse[k] - diffuse[k]), std::abs(g.f0[k] - f0[k])});
     }
-    ASSERT_NEAR(g.roughness, roughness, tolerance(roughness, roughnessStep)) << "pixel " << i;
-    ASSERT_NEAR(g.metallic, metallic, tolerance(metallic, metallicStep)) << "pixel " << i;
+    ASSERT_NEAR(g.roughness, roughness, tolerance(roughness, roughnessError)) << "pixel " << i;
+    ASSERT_NEAR(g.metallic, metallic, tolerance(metallic, metallicError)) << "pixel " << i;
     maxError = std::max({maxError, std::abs(g.roughness - roughness), std::abs(g.metallic - metallic)});
   }
   RecordProperty("max_abs_error", std::to_string(maxError));
-  EXPECT_EQ(checked, size_t{kWidth} * kHeight);
+}
+
+TEST_F(GBufferTest, MagnifiedTexturesMatchBilinearReference) {
+  // 8 x 8 ramps stretched over the view: ~0.05 texels per pixel, so the GPU's LOD is < 0 and
+  // its trilinear filter reduces to bilinear on mip 0, the reference's filter. UVs stay
+  // between the outer texel centres (1/16 .. 15/16) so no tap wraps around.
+  constexpr int kSize = 8;
+  auto baseAt = [](int x, int y) {
+    return glm::u8vec4(40 + 20 * x, 200 - 15 * y, 100 + 5 * (x + y), 255);
+  };
+  auto mrAt = [](int x, int) { return glm::u8vec4(0, 60 + 20 * x, 0, 255); };
+  engine::Material m;
+  m.baseColorFactor = {1.0f, 0.8f, 0.6f, 1.0f};
+  m.roughnessFactor = 0.75f;
+  m.metallicFactor = 0.0f;  // diffuse = base colour, F0 = 0.04
+  Scene scene = texturedQuad(makeTexture("base", kSize, baseAt), makeTexture("mr", kSize, mrAt), m,
+                             0.5f / kSize, 1.0f - 0.5f / kSize);
+  engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
+  GpuResolve gpu = resolve(scene, view);
+  GBufferData cpu = engine::resolveGBufferReference(scene, view, gpu.visibility);
+
+  // Per channel: half a code as above, plus the sampler's quantisation of each bilinear
+  // weight to subTexelPrecisionBits, which moves the result by at most 2^-bits times the
+  // largest step between neighbouring texels, per axis.
+  const double weightError =
+      2.0 * std::ldexp(1.0, -static_cast<int>(ctx().properties().limits.subTexelPrecisionBits));
+  auto samplerError = [&](auto texelAt, int channel, bool srgb, double factor) {
+    auto decode = [&](int x, int y) {
+      double c = texelAt(x, y)[channel] / 255.0;
+      return srgb ? engine::srgbToLinear(c) : c;
+    };
+    double worst = 0.0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        double step = std::max(x + 1 < kSize ? std::abs(decode(x + 1, y) - decode(x, y)) : 0.0,
+                               y + 1 < kSize ? std::abs(decode(x, y + 1) - decode(x, y)) : 0.0);
+        worst = std::max(worst, halfCodeStep(texelAt(x, y)[channel], srgb) + weightError * step);
+      }
+    return factor * worst;
+  };
+  const double baseError[3] = {samplerError(baseAt, 0, true, m.baseColorFactor.r),
+                               samplerError(baseAt, 1, true, m.baseColorFactor.g),
+                               samplerError(baseAt, 2, true, m.baseColorFactor.b)};
+  const double roughnessError = samplerError(mrAt, 1, false, m.roughnessFactor);
+
+  double maxError = 0.0;
+  for (size_t i = 0; i < cpu.samples.size(); ++i) {
+    const GBufferSample& r = cpu.samples[i];
+    const GBufferSample& g = gpu.gbuffer.samples[i];
+    ASSERT_FALSE(r.background()) << "the quad fills the view";
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_NEAR(g.diffuse[k], r.diffuse[k], baseError[k] + kHalfRelative * r.diffuse[k] + kHalfAbsolute)
+          << "pixel " << i << " channel " << k;
+      ASSERT_TRUE(withinHalf(g.f0[k], 0.04)) << g.f0[k];
+      maxError = std::max(maxError, std::abs(g.diffuse[k] - r.diffuse[k]));
+    }
+    ASSERT_NEAR(g.roughness, r.roughness, roughnessError + kHalfRelative * r.roughness + kHalfAbsolute)
+        << "pixel " << i;
+    ASSERT_EQ(g.metallic, 0.0);
+    maxError = std::max(maxError, std::abs(g.roughness - r.roughness));
+  }
+  RecordProperty("max_abs_error", std::to_string(maxError));
 }
 
 }  // namespace

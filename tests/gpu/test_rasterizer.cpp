@@ -65,6 +65,21 @@ Scene meshScene(std::vector<glm::vec3> positions, std::vector<uint32_t> indices)
   return s;
 }
 
+// Triangles of an n x n cell grid of (n+1)^2 row-major vertices, with alternating diagonals so
+// that edges of every slope sign meet at the vertices.
+std::vector<uint32_t> gridIndices(int n) {
+  std::vector<uint32_t> idx;
+  auto at = [&](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      uint32_t a = at(i, j), b = at(i + 1, j), c = at(i, j + 1), d = at(i + 1, j + 1);
+      if ((i + j) % 2 == 0) idx.insert(idx.end(), {a, b, d, a, d, c});
+      else idx.insert(idx.end(), {a, b, c, b, d, c});
+    }
+  }
+  return idx;
+}
+
 // A (n+1)^2-vertex grid over [-half, half]^2 in the plane {y = height} (or z = depth for the
 // vertical grid), interior vertices jittered so edges take arbitrary slopes, triangulated with
 // alternating diagonals. Every interior edge is shared by exactly two triangles.
@@ -85,16 +100,7 @@ Scene jitteredGrid(int n, float half, bool horizontal, float offset, uint32_t se
       p.push_back(horizontal ? glm::vec3(a, offset, b) : glm::vec3(a, b, offset));
     }
   }
-  std::vector<uint32_t> idx;
-  auto at = [&](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      uint32_t a = at(i, j), b = at(i + 1, j), c = at(i, j + 1), d = at(i + 1, j + 1);
-      if ((i + j) % 2 == 0) idx.insert(idx.end(), {a, b, d, a, d, c});
-      else idx.insert(idx.end(), {a, b, c, b, d, c});
-    }
-  }
-  return meshScene(std::move(p), std::move(idx));
+  return meshScene(std::move(p), gridIndices(n));
 }
 
 class Rasterizer : public testing_gpu::GpuTest {};
@@ -150,19 +156,11 @@ TEST_F(Rasterizer, PixelAlignedGridExercisesTheFillRule) {
   // run exactly through sample points, so only the fill rule decides who owns them.
   const uint32_t size = 64;
   std::vector<glm::vec3> p;
-  std::vector<uint32_t> idx;
   const int n = 20;  // 20 cells of 4 pixels: the grid overhangs the 64-pixel view
   auto ndc = [&](int k) { return (static_cast<float>(4 * k - 8) + 0.5f) / static_cast<float>(size) * 2.0f - 1.0f; };
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) p.push_back(glm::vec3(ndc(i), -ndc(j), 0.0f));
-  auto at = [&](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      uint32_t a = at(i, j), b = at(i + 1, j), c = at(i, j + 1), d = at(i + 1, j + 1);
-      if ((i + j) % 2 == 0) idx.insert(idx.end(), {a, b, d, a, d, c});
-      else idx.insert(idx.end(), {a, b, c, b, d, c});
-    }
-  Scene grid = meshScene(std::move(p), std::move(idx));
+  Scene grid = meshScene(std::move(p), gridIndices(n));
   // Camera at z = 1 looking down -Z with a [-1, 1]^2 orthographic window.
   glm::mat4 vp = engine::orthographicVulkan(1.0f, 1.0f, 0.5f, 1.5f) *
                  engine::lookAlong(glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));

@@ -57,11 +57,14 @@ std::optional<uint32_t> firstHit(const engine::Scene& scene, const glm::vec3& or
     const float det = glm::dot(e1, pv);
     if (std::abs(det) < 1e-12f) continue;
     const glm::vec3 tv = origin - p0;
+    // A ray through an edge shared by two triangles must hit at least one of them despite
+    // rounding, so the inside test is widened by kEdgeSlack (in barycentric units).
+    constexpr float kEdgeSlack = 1e-6f;
     const float u = glm::dot(tv, pv) / det;
-    if (u < 0.0f || u > 1.0f) continue;
+    if (u < -kEdgeSlack || u > 1.0f + kEdgeSlack) continue;
     const glm::vec3 qv = glm::cross(tv, e1);
     const float v = glm::dot(direction, qv) / det;
-    if (v < 0.0f || u + v > 1.0f) continue;
+    if (v < -kEdgeSlack || u + v > 1.0f + kEdgeSlack) continue;
     const float hit = glm::dot(e2, qv) / det;
     if (hit > 1e-4f && hit < bestT) {
       bestT = hit;

@@ -493,6 +493,9 @@ TEST(GltfLoaderErrors, BadReferencesAndValues) {
        "outerConeAngle"},
       {"no triangles", [](json& g) { g["nodes"][0].erase("mesh"); }, "scene has no triangles"},
       {"scene", [](json& g) { g["scene"] = 3; }, "scene 3 does not exist"},
+      {"required extension",
+       [](json& g) { g["extensionsRequired"] = {"KHR_draco_mesh_compression"}; },
+       "requires unsupported extension 'KHR_draco_mesh_compression'"},
   };
   TempDir dir;
   for (const Case& c : cases) {

@@ -3,14 +3,18 @@
 // inverse-square falloff with KHR_lights_punctual's range window and spot cone falloff, and
 // the same normal-offset 3x3 PCF of the shadow maps, evaluated in double.
 //
-// The GPU rebuilds the receiver from the fp32 depth with an fp32 inverse view-projection; with
-// a perspective camera that loses digits to cancellation (h.w ~ 1 - depth), so the GPU's
-// receiver sits anywhere within a few depth ulps along the view ray of the exact one. Shading
-// is smooth in the receiver except at shadow-map decisions, so the reference reports, next to
-// its radiance, how much the radiance changes over that interval (`spread`), and flags pixels
-// where a shadow test is within fp32 rounding of its threshold (`ambiguous`): a tap that may
-// go either way changes the result by a ninth of a light's contribution, and no tolerance on
-// values can absorb that.
+// Inputs are identical (the GPU's decoded G-buffer, the same LightSetup and shadow maps), but
+// the GPU evaluates in fp32, and three of its steps are ill-conditioned: the receiver rebuilt
+// from depth with the inverse view-projection (h = M (x, y, z, 1) cancels terms of size
+// |eye| / znear down to size 1 / distance), the view ray from two nearby unprojected points,
+// and GGX's D near the peak of a glossy lobe. The reference bounds the first two errors by
+// forward error analysis (Higham's gamma_n) and re-evaluates the shading across that box of
+// receivers and view vectors, and bounds the third from D's derivative; `errorBound` is the
+// sum, a first-order bound of how far a correct fp32 evaluation may be from the double one
+// beyond a few ulps of rounding. Shadow tests are discontinuous: a pixel whose PCF result
+// changes within the box, or one of whose taps is within fp32 rounding of its depth threshold
+// or texel border, is flagged `ambiguous`, since one flipped tap moves the result by a ninth
+// of a light and no tolerance on values can absorb that.
 #pragma once
 
 #include <cstdint>
@@ -25,26 +29,12 @@
 
 namespace engine {
 
-// Receiver position uncertainty of the GPU, in ulps of the G-buffer depth: h = M (x, y, z, 1)
-// in fp32 rounds four products and three sums, each at most half an ulp of the largest term;
-// for h.w the terms are ~1/znear and cancel to (1 - z)/znear, which is the same absolute
-// error as moving z by about one ulp. Four leaves room for the division and for FMA-less
-// evaluation orders.
-constexpr int kReceiverDepthUlps = 4;
-
-// Shadow decisions closer than this to their threshold, in NDC units, count as ambiguous:
-// 16 ulps of values in [0.5, 1), covering fp32 rounding in the shadow view's 4x4 transform
-// (terms a few times larger than w) and the perspective division.
-constexpr double kShadowNdcMargin = 0x1p-20;
-
 struct DirectLightReference {
   uint32_t width = 0;
   uint32_t height = 0;
-  std::vector<glm::dvec3> radiance;  // W sr^-1 m^-2 at the receiver rebuilt from depth; 0 on background
-  // Per pixel, the largest change of any radiance channel when the receiver moves
-  // kReceiverDepthUlps depth ulps either way along the view ray.
-  std::vector<double> spread;
-  std::vector<uint8_t> ambiguous;  // 1 where a shadow test is within kShadowNdcMargin of flipping
+  std::vector<glm::dvec3> radiance;  // W sr^-1 m^-2, 0 on background, row 0 at the top
+  std::vector<double> errorBound;    // per pixel, any channel (see above)
+  std::vector<uint8_t> ambiguous;    // 1 where the shadow result is undecidable in fp32
 };
 
 // The shadow maps of every view in `setup`, rendered by rasterizeReference and laid out as the
