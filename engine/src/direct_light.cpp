@@ -88,7 +88,7 @@ DirectLighting::DirectLighting(Context& ctx, const Scene& scene, const DirectLig
     : settings_(settings),
       setup_(buildLightSetup(scene, settings)),
       program_(ctx, "direct_light", kDirectLightSpv,
-               {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+               {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                 VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                 VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                 VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -96,13 +96,21 @@ DirectLighting::DirectLighting(Context& ctx, const Scene& scene, const DirectLig
   if (settings.shadowResolution < 16 || settings.shadowResolution > 4096)
     throw Error("shadow resolution " + std::to_string(settings.shadowResolution) +
                 " outside [16, 4096]");
-  auto makeBuffer = [&](const void* data, size_t bytes) {
-    Buffer b(ctx, std::max<size_t>(bytes, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
+  if (setup_.lights.size() > DIRECT_MAX_LIGHTS || setup_.views.size() > DIRECT_MAX_SHADOW_VIEWS)
+    throw Error(scene.source + ": " + std::to_string(setup_.lights.size()) + " lights with " +
+                std::to_string(setup_.views.size()) + " shadow views; direct lighting supports " +
+                std::to_string(DIRECT_MAX_LIGHTS) + " lights and " +
+                std::to_string(DIRECT_MAX_SHADOW_VIEWS) + " shadow views");
+  // Full-size uniform buffers: the shader declares fixed-size arrays.
+  auto makeUniform = [&](const void* data, size_t bytes, size_t capacity) {
+    Buffer b(ctx, capacity, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::GpuOnly);
     b.upload(ctx, data, bytes);
     return b;
   };
-  lights_ = makeBuffer(setup_.lights.data(), setup_.lights.size() * sizeof(gpu::GpuLight));
-  views_ = makeBuffer(setup_.views.data(), setup_.views.size() * sizeof(gpu::ShadowView));
+  lights_ = makeUniform(setup_.lights.data(), setup_.lights.size() * sizeof(gpu::GpuLight),
+                        DIRECT_MAX_LIGHTS * sizeof(gpu::GpuLight));
+  views_ = makeUniform(setup_.views.data(), setup_.views.size() * sizeof(gpu::ShadowView),
+                       DIRECT_MAX_SHADOW_VIEWS * sizeof(gpu::ShadowView));
   VkDeviceSize mapBytes = Rasterizer::visibilityBytes(settings.shadowResolution, settings.shadowResolution);
   shadowMaps_ = Buffer(ctx, std::max<VkDeviceSize>(mapBytes * setup_.views.size(), 16),
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
@@ -121,7 +129,7 @@ void DirectLighting::record(VkCommandBuffer cmd, const SceneGpu& scene, Rasteriz
   gpu::DirectLightPush push{view.invViewProj, {g.width, g.height},
                             static_cast<uint32_t>(setup_.lights.size()), res};
   program_.dispatch(cmd,
-                    {Binding::storage(lights_), Binding::storage(views_), Binding::storage(shadowMaps_),
+                    {Binding::uniform(lights_), Binding::uniform(views_), Binding::storage(shadowMaps_),
                      Binding::storageImage(g.depth), Binding::storageImage(g.normal),
                      Binding::storageImage(g.diffuse), Binding::storageImage(g.specular),
                      Binding::storageImage(radiance)},

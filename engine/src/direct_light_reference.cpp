@@ -36,13 +36,16 @@ glm::dvec3 schlickFresnel(glm::dvec3 f0, double vh) {
 // fp32's unit roundoff and Higham's gamma_n = n u / (1 - n u): an n-term dot product (or n
 // chained roundings) evaluated in fp32 errs by at most gamma_n times the sum of |terms|.
 constexpr double kUnitRoundoff = 0x1p-24;
-constexpr double gamma(int n) { return n * kUnitRoundoff / (1.0 - n * kUnitRoundoff); }
+constexpr double fp32Gamma(int n) {
+  return n * kUnitRoundoff / (1.0 - n * kUnitRoundoff);
+}
 
 // BRDF times cosine, and a bound on the error fp32 adds to it beyond a few ulps: GGX's
 // d = nh^2 (a2 - 1) + 1 cancels to ~a2 at the lobe's peak, so the roundings of nh (the decoded
 // n, h = normalize(v + l), their dot product: ~16) and of d itself (4, absolute) are amplified
-// by D's relative derivative 4 nh (1 - a2) / d and by 2 / d. For the glossiest built-in tile
-// (r = 0.08, a2 = 4e-5) that is percents at the peak, for r >= 0.5 below 1e-5.
+// by D's relative derivative 4 nh (1 - a2) / d and by 2 / d. At the peak (d = a2) that bounds
+// D's relative error by 0.1 for the glossiest built-in tile (r = 0.08, a2 = 4e-5), 3e-3 for
+// r = 0.2 and 1e-5 for the diffuse r = 0.9.
 struct Brdf {
   glm::dvec3 value{0.0};
   double error = 0.0;
@@ -59,7 +62,7 @@ Brdf brdfCos(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, const GBufferSample& s) {
   glm::dvec3 spec = ggxD(nh, a2) * smithGgxCorrelatedV(nv, nl, a2) *
                     schlickFresnel(s.f0, std::max(glm::dot(v, h), 0.0));
   double d = nh * nh * (a2 - 1.0) + 1.0;
-  double dRelative = (4.0 * nh * (1.0 - a2) * gamma(16) + 2.0 * gamma(4)) / d;
+  double dRelative = (4.0 * nh * (1.0 - a2) * fp32Gamma(16) + 2.0 * fp32Gamma(4)) / d;
   glm::dvec3 specCos = spec * nl;
   return {s.diffuse / std::numbers::pi * nl + specCos,
           std::max({specCos.x, specCos.y, specCos.z}) * dRelative};
@@ -75,17 +78,19 @@ struct Point {
 
 Point unproject(const glm::dmat4& m, glm::dvec2 ndc, double z) {
   const glm::dvec4 x(ndc, z, 1.0);
-  const glm::dvec2 ndcError = gamma(2) * (glm::abs(ndc) + 1.0);
+  const glm::dvec2 ndcError = fp32Gamma(2) * (glm::abs(ndc) + 1.0);
   const glm::dvec4 h = m * x;
   glm::dvec4 hError;
   for (int j = 0; j < 4; ++j) {
     double terms = 0.0;
     for (int k = 0; k < 4; ++k) terms += std::abs(m[k][j] * x[k]);
-    hError[j] = gamma(4) * terms + (std::abs(m[0][j]) * ndcError.x + std::abs(m[1][j]) * ndcError.y);
+    hError[j] =
+        fp32Gamma(4) * terms + (std::abs(m[0][j]) * ndcError.x + std::abs(m[1][j]) * ndcError.y);
   }
   Point r;
   r.p = glm::dvec3(h) / h.w;
-  r.error = (glm::dvec3(hError) + glm::abs(r.p) * hError.w) / std::abs(h.w) + gamma(1) * glm::abs(r.p);
+  r.error = (glm::dvec3(hError) + glm::abs(r.p) * hError.w) / std::abs(h.w) +
+            fp32Gamma(1) * glm::abs(r.p);
   return r;
 }
 
@@ -96,7 +101,9 @@ struct Visibility {
   bool ambiguous = false;
 };
 
-bool nearInteger(double x, double margin) { return std::abs(x - std::round(x)) <= margin; }
+bool nearInteger(double x, double margin) {
+  return std::abs(x - std::round(x)) <= margin;
+}
 
 // The shader's shadowVisibility(): fraction of the 3x3 texels around q's projection that see
 // q. Rounding bounds as unproject(): the clip-space rows of the shadow view's matrix (q itself
@@ -111,20 +118,21 @@ Visibility shadowVisibility(const gpu::ShadowView& view, std::span<const uint64_
   for (int j = 0; j < 4; ++j) {
     double terms = 0.0;
     for (int k = 0; k < 4; ++k) terms += std::abs(m[k][j] * x[k]);
-    clipError[j] = gamma(8) * terms;
+    clipError[j] = fp32Gamma(8) * terms;
   }
   const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
   const glm::dvec3 ndcError =
-      (glm::dvec3(clipError) + glm::abs(ndc) * clipError.w) / clip.w + gamma(1) * glm::abs(ndc);
+      (glm::dvec3(clipError) + glm::abs(ndc) * clipError.w) / clip.w + fp32Gamma(1) * glm::abs(ndc);
   Visibility r;
   r.ambiguous = std::abs(ndc.z) <= ndcError.z || std::abs(ndc.z - 1.0) <= ndcError.z;
   if (ndc.z < 0.0 || ndc.z > 1.0) return r;
   const double halfSize = 0.5 * size;
   const glm::dvec2 texel = (glm::dvec2(ndc) * 0.5 + 0.5) * static_cast<double>(size);
   // (ndc * 0.5 + 0.5) * size adds two roundings of values up to size.
-  r.ambiguous = r.ambiguous || nearInteger(texel.x, halfSize * ndcError.x + gamma(2) * size) ||
-                nearInteger(texel.y, halfSize * ndcError.y + gamma(2) * size);
-  const glm::ivec2 centre(static_cast<int>(std::floor(texel.x)), static_cast<int>(std::floor(texel.y)));
+  r.ambiguous = r.ambiguous || nearInteger(texel.x, halfSize * ndcError.x + fp32Gamma(2) * size) ||
+                nearInteger(texel.y, halfSize * ndcError.y + fp32Gamma(2) * size);
+  const glm::ivec2 centre(static_cast<int>(std::floor(texel.x)),
+                          static_cast<int>(std::floor(texel.y)));
   double lit = 0.0;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
@@ -169,7 +177,8 @@ struct Lighting {
 // The body of the shader's light loop for receiver p with view vector v.
 Shading shade(const Lighting& lighting, const GBufferSample& s, glm::dvec3 p, glm::dvec3 v) {
   Shading out;
-  const size_t mapTexels = static_cast<size_t>(lighting.shadowResolution) * lighting.shadowResolution;
+  const size_t mapTexels =
+      static_cast<size_t>(lighting.shadowResolution) * lighting.shadowResolution;
   for (const gpu::GpuLight& light : lighting.setup.lights) {
     out.visibility.push_back(1.0);
     glm::dvec3 l;
@@ -200,19 +209,22 @@ Shading shade(const Lighting& lighting, const GBufferSample& s, glm::dvec3 p, gl
       uint32_t view = light.info.y;
       if (light.info.z == 6u) {
         glm::dvec3 d = p - glm::dvec3(light.position);
-        double dError = gamma(1) * glm::length(glm::abs(p) + glm::abs(glm::dvec3(light.position)));
+        double dError =
+            fp32Gamma(1) * glm::length(glm::abs(p) + glm::abs(glm::dvec3(light.position)));
         view += cubeFace(d, dError, out.ambiguous);
       }
       const gpu::ShadowView& shadowView = lighting.setup.views[view];
       double texelWorld = shadowView.texel.x * distanceToLight + shadowView.texel.y;
       glm::dvec3 offset = s.normal * (SHADOW_NORMAL_OFFSET_TEXELS * texelWorld);
-      Visibility vis = shadowVisibility(shadowView, lighting.shadowMaps.subspan(view * mapTexels, mapTexels),
-                                        lighting.shadowResolution, p + offset);
+      Visibility vis =
+          shadowVisibility(shadowView, lighting.shadowMaps.subspan(view * mapTexels, mapTexels),
+                           lighting.shadowResolution, p + offset);
       out.visibility.back() = vis.lit;
       out.ambiguous = out.ambiguous || vis.ambiguous;
     }
     out.radiance += f.value * irradiance * out.visibility.back();
-    out.error += f.error * std::max({irradiance.x, irradiance.y, irradiance.z}) * out.visibility.back();
+    out.error +=
+        f.error * std::max({irradiance.x, irradiance.y, irradiance.z}) * out.visibility.back();
   }
   return out;
 }
@@ -224,7 +236,8 @@ double maxAbsDifference(glm::dvec3 a, glm::dvec3 b) {
 
 // Two unit vectors perpendicular to unit v and to each other.
 void tangents(glm::dvec3 v, glm::dvec3& t1, glm::dvec3& t2) {
-  t1 = glm::normalize(glm::cross(v, std::abs(v.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  t1 = glm::normalize(
+      glm::cross(v, std::abs(v.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
   t2 = glm::cross(v, t1);
 }
 
@@ -270,7 +283,7 @@ DirectLightReference directLightReference(const GBufferData& gbuffer, const View
       const glm::dvec3 v = -glm::normalize(dir);
       // cameraRay()'s direction errs by the two points' errors across their distance, plus
       // the subtraction and normalize roundings.
-      const double vError = glm::length(near.error + mid.error) / glm::length(dir) + gamma(6);
+      const double vError = glm::length(near.error + mid.error) / glm::length(dir) + fp32Gamma(6);
 
       Shading centre = shade(lighting, s, receiver.p, v);
       out.radiance[i] = centre.radiance;

@@ -48,7 +48,8 @@ glm::dvec2 planeBarycentrics(const Ray& ray, glm::dvec3 a, glm::dvec3 b, glm::dv
 // A texel of an 8-bit RGBA texture in linear space; sRGB decoding applies to RGB only.
 glm::dvec4 texel(const Texture& t, int64_t x, int64_t y, bool srgb) {
   auto wrap = [](int64_t i, int n) { return static_cast<size_t>(((i % n) + n) % n); };
-  const uint8_t* rgba = &t.rgba8[(wrap(y, t.height) * static_cast<size_t>(t.width) + wrap(x, t.width)) * 4];
+  const uint8_t* rgba =
+      &t.rgba8[(wrap(y, t.height) * static_cast<size_t>(t.width) + wrap(x, t.width)) * 4];
   glm::dvec4 c;
   for (int k = 0; k < 4; ++k) {
     double v = rgba[k] / 255.0;
@@ -59,7 +60,7 @@ glm::dvec4 texel(const Texture& t, int64_t x, int64_t y, bool srgb) {
 
 // Bilinear filtering with repeat addressing, Vulkan's texel-centre convention (u * size - 0.5).
 glm::dvec4 sampleBilinear(const Texture& t, glm::dvec2 uv, bool srgb) {
-  double x = uv.x * t.width, y = uv.y * t.height - 0.5;
+  double x = uv.x * t.width - 0.5, y = uv.y * t.height - 0.5;
   double x0 = std::floor(x), y0 = std::floor(y);
   double fx = x - x0, fy = y - y0;
   auto ix = static_cast<int64_t>(x0), iy = static_cast<int64_t>(y0);
@@ -93,7 +94,8 @@ GBufferSample resolvePixel(const Scene& scene, const glm::dmat4& invViewProj, ui
 
   const Material& m = scene.materials[scene.triangleMaterial[tri]];
   glm::dvec4 base(m.baseColorFactor);
-  if (m.baseColorTexture >= 0) base *= sampleBilinear(scene.textures[m.baseColorTexture], texcoord, true);
+  if (m.baseColorTexture >= 0)
+    base *= sampleBilinear(scene.textures[m.baseColorTexture], texcoord, true);
   double metallic = m.metallicFactor, roughness = m.roughnessFactor;
   if (m.metallicRoughnessTexture >= 0) {
     glm::dvec4 mr = sampleBilinear(scene.textures[m.metallicRoughnessTexture], texcoord, false);
@@ -125,7 +127,9 @@ T loadTexel(std::span<const std::byte> bytes, size_t index) {
 }
 
 // Vulkan's SNORM decode: the most negative code also maps to -1.
-double snormToDouble(int16_t v) { return std::max(v / 32767.0, -1.0); }
+double snormToDouble(int16_t v) {
+  return std::max(v / 32767.0, -1.0);
+}
 
 glm::dvec4 halfsToDouble(std::span<const std::byte> bytes, size_t pixel) {
   glm::dvec4 r;
@@ -142,10 +146,14 @@ double srgbToLinear(double encoded) {
 
 GBufferData resolveGBufferReference(const Scene& scene, const View& view,
                                     std::span<const uint64_t> visibility) {
+  if (visibility.size() != size_t{view.width} * view.height)
+    throw Error("resolveGBufferReference: " + std::to_string(visibility.size()) +
+                " visibility texels for a " + std::to_string(view.width) + "x" +
+                std::to_string(view.height) + " view");
   GBufferData g;
   g.width = view.width;
   g.height = view.height;
-  g.samples.resize(size_t{view.width} * view.height);
+  g.samples.resize(visibility.size());
   const glm::dmat4 invViewProj(view.invViewProj);
   for (uint32_t y = 0; y < view.height; ++y)
     for (uint32_t x = 0; x < view.width; ++x) {

@@ -36,11 +36,16 @@ glm::vec4 toClip(const glm::mat4& m, const glm::vec3& p) {
 float planeDistance(const glm::vec4& v, int k) {
   float g = static_cast<float>(RASTER_GUARD_BAND) * v.w;
   switch (k) {
-    case 0: return v.z;
-    case 1: return g - v.x;
-    case 2: return g + v.x;
-    case 3: return g - v.y;
-    default: return g + v.y;
+    case 0:
+      return v.z;
+    case 1:
+      return g - v.x;
+    case 2:
+      return g + v.x;
+    case 3:
+      return g - v.y;
+    default:
+      return g + v.y;
   }
 }
 
@@ -118,7 +123,8 @@ ReferenceRaster rasterizeReference(const Scene& scene, const glm::mat4& viewProj
   for (uint32_t tri = 0; tri < scene.triangleCount(); ++tri) {
     c.triangleId = tri;
     glm::vec4 v[3];
-    for (int i = 0; i < 3; ++i) v[i] = toClip(viewProj, scene.positions[scene.indices[3 * tri + i]]);
+    for (int i = 0; i < 3; ++i)
+      v[i] = toClip(viewProj, scene.positions[scene.indices[3 * tri + i]]);
     bool rejected = false;
     for (int axis = 0; axis < 2; ++axis) {
       rejected = rejected || (v[0][axis] > v[0].w && v[1][axis] > v[1].w && v[2][axis] > v[2].w);

@@ -8,8 +8,12 @@ const float kPi = 3.14159265358979;
 // alpha below this underflows alpha^4 in fp32; mirror-like surfaces are clamped to it.
 const float kMinAlpha = 1e-3;
 
-float ggxD(float nh, float a2) {
-  float d = nh * nh * (a2 - 1.0) + 1.0;
+// GGX NDF. The usual denominator nh^2 (a2 - 1) + 1 cancels catastrophically near the peak of a
+// sharp lobe (a2 << 1, nh -> 1); 1 - nh^2 = |n x h|^2 gives the same value without cancellation.
+float ggxD(vec3 n, vec3 h, float a2) {
+  float nh = max(dot(n, h), 0.0);
+  vec3 nxh = cross(n, h);
+  float d = nh * nh * a2 + dot(nxh, nxh);
   return a2 / (kPi * d * d);
 }
 
@@ -35,8 +39,7 @@ vec3 brdfCos(vec3 n, vec3 v, vec3 l, vec3 diffuse, vec3 f0, float roughness) {
   float alpha = max(roughness * roughness, kMinAlpha);
   float a2 = alpha * alpha;
   vec3 h = normalize(v + l);
-  float nh = max(dot(n, h), 0.0);
-  vec3 spec = ggxD(nh, a2) * smithGgxCorrelatedV(nv, nl, a2) * schlickFresnel(f0, max(dot(v, h), 0.0));
+  vec3 spec = ggxD(n, h, a2) * smithGgxCorrelatedV(nv, nl, a2) * schlickFresnel(f0, max(dot(v, h), 0.0));
   return (diffuse / kPi + spec) * nl;
 }
 

@@ -12,8 +12,8 @@
 
 layout(local_size_x = DIRECT_GROUP_X, local_size_y = DIRECT_GROUP_Y) in;
 
-layout(std430, binding = 0) readonly buffer Lights { GpuLight lights[]; };
-layout(std430, binding = 1) readonly buffer Views { ShadowView shadowViews[]; };
+layout(std140, binding = 0) uniform Lights { GpuLight lights[DIRECT_MAX_LIGHTS]; };
+layout(std140, binding = 1) uniform Views { ShadowView shadowViews[DIRECT_MAX_SHADOW_VIEWS]; };
 layout(std430, binding = 2) readonly buffer ShadowMaps { uint64_t shadowMaps[]; };
 layout(binding = 3, r32f) uniform readonly image2D gDepth;
 layout(binding = 4, rg16_snorm) uniform readonly image2D gNormal;

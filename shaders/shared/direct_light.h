@@ -6,6 +6,11 @@
 
 #define DIRECT_GROUP_X 8
 #define DIRECT_GROUP_Y 8
+// Lights and shadow views live in uniform buffers: lavapipe reads a uniform-indexed UBO once per
+// SIMD row but gathers storage-buffer structs lane by lane. 256 * 80 bytes stays under the
+// 64 KiB uniform range that Vulkan devices commonly offer.
+#define DIRECT_MAX_LIGHTS 256
+#define DIRECT_MAX_SHADOW_VIEWS 256
 #define LIGHT_DIRECTIONAL 0u
 #define LIGHT_POINT 1u
 #define LIGHT_SPOT 2u

@@ -30,9 +30,9 @@ constexpr uint32_t kHeight = 64;
 // most sqrt(18) / 32767 = 1.29e-4 rad. 1e-6 rad more covers the shader's fp32 normalize and
 // encode (a few ulps).
 constexpr double kNormalTolerance = 3.0 * std::numbers::sqrt2 / 32767.0 + 1e-6;
-// RGBA16F: Vulkan rounds a float to either neighbouring half (the mode is not defined; round
-// toward zero is common), an error below one half ulp = 2^-10 relative for normal halves and
-// one subnormal step 2^-24 below 2^-14. The shader's few fp32 products add ~1e-7 relative.
+// RGBA16F: Vulkan rounds a float to either neighbouring half (the mode is not defined;
+// lavapipe truncates), an error below one ulp: 2^-10 relative for normal halves, one
+// subnormal step 2^-24 below 2^-14. The shader's few fp32 products add ~1e-7 relative.
 constexpr double kHalfRelative = 0x1p-10 + 1e-6;
 constexpr double kHalfAbsolute = 0x1p-24;
 
@@ -46,8 +46,8 @@ double angleBetween(glm::dvec3 a, glm::dvec3 b) {
 
 struct GpuResolve {
   std::vector<uint64_t> visibility;
-  GBufferData gbuffer;                  // decoded
-  std::vector<std::byte> raw[4];        // depth, normal, diffuse, specular as read back
+  GBufferData gbuffer;            // decoded
+  std::vector<std::byte> raw[4];  // depth, normal, diffuse, specular as read back
 };
 
 class GBufferTest : public testing_gpu::GpuTest {
@@ -55,13 +55,13 @@ class GBufferTest : public testing_gpu::GpuTest {
   GpuResolve resolve(const Scene& scene, const engine::View& view) {
     engine::SceneGpu gpuScene = engine::uploadScene(ctx(), scene);
     engine::Rasterizer rasterizer(ctx());
-    engine::GBufferResolve resolve(ctx());
+    engine::GBufferResolve resolvePass(ctx());
     engine::GBuffer g = engine::createGBuffer(ctx(), view.width, view.height);
     engine::Buffer visibility(ctx(), engine::Rasterizer::visibilityBytes(view.width, view.height),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
       rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, view.width, view.height});
-      resolve.record(cmd, gpuScene, visibility, view, g);
+      resolvePass.record(cmd, gpuScene, visibility, view, g);
     });
     GpuResolve out;
     out.visibility = visibility.readbackAs<uint64_t>(ctx());
@@ -69,8 +69,8 @@ class GBufferTest : public testing_gpu::GpuTest {
     out.raw[1] = g.normal.readback(ctx());
     out.raw[2] = g.diffuse.readback(ctx());
     out.raw[3] = g.specular.readback(ctx());
-    out.gbuffer = engine::decodeGBuffer(view.width, view.height, out.raw[0], out.raw[1],
-                                        out.raw[2], out.raw[3]);
+    out.gbuffer = engine::decodeGBuffer(view.width, view.height, out.raw[0], out.raw[1], out.raw[2],
+                                        out.raw[3]);
     return out;
   }
 };
@@ -84,7 +84,8 @@ bool rawBackground(const GpuResolve& r, size_t i) {
                        bytes.begin() + static_cast<ptrdiff_t>(first + count),
                        [](std::byte b) { return b == std::byte{0}; });
   };
-  return depth == 1.0f && zero(r.raw[1], 4 * i, 4) && zero(r.raw[2], 8 * i, 8) && zero(r.raw[3], 8 * i, 8);
+  return depth == 1.0f && zero(r.raw[1], 4 * i, 4) && zero(r.raw[2], 8 * i, 8) &&
+         zero(r.raw[3], 8 * i, 8);
 }
 
 struct Comparison {
@@ -106,7 +107,8 @@ Comparison compare(const GpuResolve& gpu, const GBufferData& cpu) {
   for (size_t i = 0; i < cpu.samples.size(); ++i) {
     const GBufferSample& g = gpu.gbuffer.samples[i];
     const GBufferSample& r = cpu.samples[i];
-    if (g.depth != r.depth) fail(i, "depth " + std::to_string(g.depth) + " vs " + std::to_string(r.depth));
+    if (g.depth != r.depth)
+      fail(i, "depth " + std::to_string(g.depth) + " vs " + std::to_string(r.depth));
     if (r.background()) {
       if (!rawBackground(gpu, i)) fail(i, "background texel not cleared");
       continue;
@@ -115,12 +117,16 @@ Comparison compare(const GpuResolve& gpu, const GBufferData& cpu) {
     double angle = angleBetween(g.normal, r.normal);
     c.maxNormalAngle = std::max(c.maxNormalAngle, angle);
     if (!(angle <= kNormalTolerance)) fail(i, "normal off by " + std::to_string(angle) + " rad");
-    const double gv[8] = {g.diffuse.r, g.diffuse.g, g.diffuse.b, g.roughness, g.f0.r, g.f0.g, g.f0.b, g.metallic};
-    const double rv[8] = {r.diffuse.r, r.diffuse.g, r.diffuse.b, r.roughness, r.f0.r, r.f0.g, r.f0.b, r.metallic};
+    const double gv[8] = {g.diffuse.r, g.diffuse.g, g.diffuse.b, g.roughness,
+                          g.f0.r,      g.f0.g,      g.f0.b,      g.metallic};
+    const double rv[8] = {r.diffuse.r, r.diffuse.g, r.diffuse.b, r.roughness,
+                          r.f0.r,      r.f0.g,      r.f0.b,      r.metallic};
     for (int k = 0; k < 8; ++k) {
-      c.maxMaterialRelative = std::max(c.maxMaterialRelative, std::abs(gv[k] - rv[k]) / std::max(std::abs(rv[k]), 0x1p-14));
+      c.maxMaterialRelative = std::max(
+          c.maxMaterialRelative, std::abs(gv[k] - rv[k]) / std::max(std::abs(rv[k]), 0x1p-14));
       if (!withinHalf(gv[k], rv[k]))
-        fail(i, "material channel " + std::to_string(k) + ": " + std::to_string(gv[k]) + " vs " + std::to_string(rv[k]));
+        fail(i, "material channel " + std::to_string(k) + ": " + std::to_string(gv[k]) + " vs " +
+                    std::to_string(rv[k]));
     }
   }
   return c;
@@ -146,8 +152,10 @@ INSTANTIATE_TEST_SUITE_P(GBuffer, GBufferScenes, ::testing::ValuesIn(engine::bui
 TEST_F(GBufferTest, CameraSeeingNothingGivesBackground) {
   Scene scene = engine::makeBuiltinScene("cornell");
   // From the cornell camera's position, looking away from the open box.
-  glm::mat4 viewMatrix = engine::lookAlong({0.0f, 1.0f, 3.4f}, {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f});
-  engine::View view = engine::makeView(viewMatrix, engine::perspectiveVulkan(0.69f, 1.5f, 0.05f, 0.0f), kWidth, kHeight);
+  glm::mat4 viewMatrix =
+      engine::lookAlong({0.0f, 1.0f, 3.4f}, {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f});
+  engine::View view = engine::makeView(
+      viewMatrix, engine::perspectiveVulkan(0.69f, 1.5f, 0.05f, 0.0f), kWidth, kHeight);
   GpuResolve gpu = resolve(scene, view);
   GBufferData cpu = engine::resolveGBufferReference(scene, view, gpu.visibility);
   size_t notBackground = 0;
@@ -205,8 +213,10 @@ TEST_F(GBufferTest, BackFacesTurnTheirNormalToTheViewer) {
   const glm::u8vec4 kWhite(255, 255, 255, 255);
   Scene scene = texturedQuad(makeTexture("base", 1, [&](int, int) { return kWhite; }),
                              makeTexture("mr", 1, [&](int, int) { return kWhite; }), {});
-  glm::mat4 viewMatrix = engine::lookAlong({0.0f, 0.0f, -6.0f}, {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f});
-  engine::View view = engine::makeView(viewMatrix, engine::perspectiveVulkan(0.8f, 1.5f, 0.05f, 0.0f), kWidth, kHeight);
+  glm::mat4 viewMatrix =
+      engine::lookAlong({0.0f, 0.0f, -4.5f}, {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f});
+  engine::View view = engine::makeView(
+      viewMatrix, engine::perspectiveVulkan(0.8f, 1.5f, 0.05f, 0.0f), kWidth, kHeight);
   GpuResolve gpu = resolve(scene, view);
   GBufferData cpu = engine::resolveGBufferReference(scene, view, gpu.visibility);
   for (size_t i = 0; i < cpu.samples.size(); ++i) {
@@ -232,7 +242,8 @@ TEST_F(GBufferTest, ConstantTexturesMultiplyFactors) {
 
   // factor * texture with glTF's metallic-roughness model, from the texel codes.
   glm::dvec3 base;
-  for (int k = 0; k < 3; ++k) base[k] = m.baseColorFactor[k] * engine::srgbToLinear(kBase[k] / 255.0);
+  for (int k = 0; k < 3; ++k)
+    base[k] = m.baseColorFactor[k] * engine::srgbToLinear(kBase[k] / 255.0);
   const double roughness = m.roughnessFactor * (kMr.g / 255.0);
   const double metallic = m.metallicFactor * (kMr.b / 255.0);
   const glm::dvec3 diffuse = base * (1.0 - metallic);
@@ -261,11 +272,13 @@ TEST_F(GBufferTest, ConstantTexturesMultiplyFactors) {
       const double f0Error = baseError * metallic + std::abs(base[k] - 0.04) * metallicError;
       ASSERT_NEAR(g.diffuse[k], diffuse[k], tolerance(diffuse[k], diffuseError)) << "pixel " << i;
       ASSERT_NEAR(g.f0[k], f0[k], tolerance(f0[k], f0Error)) << "pixel " << i;
-      maxError = std::max({maxError, std::abs(g.diffuse[k] - diffuse[k]), std::abs(g.f0[k] - f0[k])});
+      maxError =
+          std::max({maxError, std::abs(g.diffuse[k] - diffuse[k]), std::abs(g.f0[k] - f0[k])});
     }
     ASSERT_NEAR(g.roughness, roughness, tolerance(roughness, roughnessError)) << "pixel " << i;
     ASSERT_NEAR(g.metallic, metallic, tolerance(metallic, metallicError)) << "pixel " << i;
-    maxError = std::max({maxError, std::abs(g.roughness - roughness), std::abs(g.metallic - metallic)});
+    maxError =
+        std::max({maxError, std::abs(g.roughness - roughness), std::abs(g.metallic - metallic)});
   }
   RecordProperty("max_abs_error", std::to_string(maxError));
 }
@@ -319,12 +332,14 @@ TEST_F(GBufferTest, MagnifiedTexturesMatchBilinearReference) {
     const GBufferSample& g = gpu.gbuffer.samples[i];
     ASSERT_FALSE(r.background()) << "the quad fills the view";
     for (int k = 0; k < 3; ++k) {
-      ASSERT_NEAR(g.diffuse[k], r.diffuse[k], baseError[k] + kHalfRelative * r.diffuse[k] + kHalfAbsolute)
+      ASSERT_NEAR(g.diffuse[k], r.diffuse[k],
+                  baseError[k] + kHalfRelative * r.diffuse[k] + kHalfAbsolute)
           << "pixel " << i << " channel " << k;
       ASSERT_TRUE(withinHalf(g.f0[k], 0.04)) << g.f0[k];
       maxError = std::max(maxError, std::abs(g.diffuse[k] - r.diffuse[k]));
     }
-    ASSERT_NEAR(g.roughness, r.roughness, roughnessError + kHalfRelative * r.roughness + kHalfAbsolute)
+    ASSERT_NEAR(g.roughness, r.roughness,
+                roughnessError + kHalfRelative * r.roughness + kHalfAbsolute)
         << "pixel " << i;
     ASSERT_EQ(g.metallic, 0.0);
     maxError = std::max(maxError, std::abs(g.roughness - r.roughness));

@@ -28,11 +28,11 @@ namespace engine {
 
 // One G-buffer texel, decoded. Background texels (nothing visible) hold depth 1 and zeros.
 struct GBufferSample {
-  float depth = 1.0f;        // Vulkan NDC depth, the visibility buffer's float bits
-  glm::dvec3 normal{0.0};    // world-space unit shading normal, facing the viewer
-  glm::dvec3 diffuse{0.0};   // base colour * (1 - metallic)
-  double roughness = 0.0;    // perceptual, GGX alpha = roughness^2
-  glm::dvec3 f0{0.0};        // mix(0.04, base colour, metallic)
+  float depth = 1.0f;       // Vulkan NDC depth, the visibility buffer's float bits
+  glm::dvec3 normal{0.0};   // world-space unit shading normal, facing the viewer
+  glm::dvec3 diffuse{0.0};  // base colour * (1 - metallic)
+  double roughness = 0.0;   // perceptual, GGX alpha = roughness^2
+  glm::dvec3 f0{0.0};       // mix(0.04, base colour, metallic)
   double metallic = 0.0;
 
   bool background() const { return depth >= 1.0f; }
