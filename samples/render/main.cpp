@@ -69,14 +69,15 @@ int run(const render::Options& o) {
   if (ec) throw Error(o.outDir + ": cannot create output directory: " + ec.message());
 
   engine::Context ctx({o.validation, o.device});
-  std::printf("device: %s (%s)\nscene: %s, %u triangles, %zu lights, %ux%u\n",
+  std::printf("device: %s (%s)\nscene: %s, %u triangles, %zu lights, %ux%u, shadow maps %u^2%s\n",
               ctx.info().name.c_str(), ctx.info().driver.c_str(), scene.source.c_str(),
-              scene.triangleCount(), scene.lights.size(), o.width, o.height);
+              scene.triangleCount(), scene.lights.size(), o.width, o.height,
+              render::shadowResolutionFor(o), o.shadows ? "" : " (off)");
 
   engine::SceneGpu gpuScene = engine::uploadScene(ctx, scene);
   engine::Rasterizer rasterizer(ctx);
   engine::GBufferResolve resolve(ctx);
-  engine::DirectLighting direct(ctx, scene, {o.shadowResolution, o.shadows});
+  engine::DirectLighting direct(ctx, scene, {render::shadowResolutionFor(o), o.shadows});
   engine::GBuffer gbuffer = engine::createGBuffer(ctx, o.width, o.height);
   engine::Buffer visibility(ctx, engine::Rasterizer::visibilityBytes(o.width, o.height),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);

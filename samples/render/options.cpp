@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <string_view>
@@ -36,13 +37,21 @@ const char* usage() {
          "  --out DIR            output directory (default out)\n"
          "  --width N --height N image size in pixels, 1..8192 (default 640x360)\n"
          "  --frames N           measured frames after one warm-up frame, 1..1000 (default 5)\n"
-         "  --shadow-res N       shadow-map texels per side, 16..4096 (default 1024)\n"
+         "  --shadow-res N       shadow-map texels per side, 16..4096 (default: from the image size)\n"
          "  --no-shadows         direct light without shadow maps\n"
          "  --exposure EV        fixed exposure in stops for the PNG (default: auto)\n"
          "  --device SEL         Vulkan device index or name substring (default: VSGL_DEVICE or auto)\n"
          "  --list-devices       print the Vulkan devices and exit\n"
          "  --validation         enable the Khronos validation layer\n"
          "  --export-gltf PATH   also write the scene as a .gltf file\n";
+}
+
+uint32_t shadowResolutionFor(const Options& o) {
+  if (o.shadowResolution != 0) return o.shadowResolution;
+  uint32_t half = std::max(o.width, o.height) / 2;
+  uint32_t resolution = 256;
+  while (resolution < half && resolution < 2048) resolution *= 2;
+  return resolution;
 }
 
 Options parseOptions(int argc, char** argv) {

@@ -72,37 +72,37 @@ void main() {
 
   vec3 radiance = vec3(0.0);
   for (uint i = 0u; i < pc.lightCount; ++i) {
-    GpuLight light = lights[i];
+    uint type = lights[i].info.x;
     vec3 l;
-    vec3 irradiance = light.radiance.rgb;  // at normal incidence, before shadowing
+    vec3 irradiance = lights[i].radiance.rgb;  // at normal incidence, before shadowing
     float distanceToLight = 0.0;
-    if (light.info.x == LIGHT_DIRECTIONAL) {
-      l = -light.direction.xyz;
+    if (type == LIGHT_DIRECTIONAL) {
+      l = -lights[i].direction.xyz;
     } else {
-      vec3 toLight = light.position.xyz - p;
+      vec3 toLight = lights[i].position.xyz - p;
       float d2 = max(dot(toLight, toLight), 1e-8);
       distanceToLight = sqrt(d2);
       l = toLight / distanceToLight;
       irradiance /= d2;
-      float range = light.radiance.w;
+      float range = lights[i].radiance.w;
       if (range > 0.0) {  // KHR_lights_punctual's recommended smooth range window
         float r = distanceToLight / range;
         irradiance *= clamp(1.0 - r * r * r * r, 0.0, 1.0);
       }
-      if (light.info.x == LIGHT_SPOT) {
-        float cd = dot(light.direction.xyz, -l);
-        float falloff = clamp(cd * light.spot.x + light.spot.y, 0.0, 1.0);
+      if (type == LIGHT_SPOT) {
+        float cd = dot(lights[i].direction.xyz, -l);
+        float falloff = clamp(cd * lights[i].spot.x + lights[i].spot.y, 0.0, 1.0);
         irradiance *= falloff * falloff;
       }
     }
     vec3 f = brdfCos(n, v, l, diffuseRough.rgb, f0, diffuseRough.a);
     if (all(equal(f, vec3(0.0))) || all(equal(irradiance, vec3(0.0)))) continue;
     float visibility = 1.0;
-    if (light.info.z > 0u) {
-      uint view = light.info.y;
-      if (light.info.z == 6u) view += cubeFace(p - light.position.xyz);
-      vec4 texel = shadowViews[view].texel;
-      float texelWorld = texel.x * distanceToLight + texel.y;
+    uint viewCount = lights[i].info.z;
+    if (viewCount > 0u) {
+      uint view = lights[i].info.y;
+      if (viewCount == 6u) view += cubeFace(p - lights[i].position.xyz);
+      float texelWorld = shadowViews[view].texel.x * distanceToLight + shadowViews[view].texel.y;
       vec3 offset = n * (SHADOW_NORMAL_OFFSET_TEXELS * texelWorld);
       visibility = shadowVisibility(view, p + offset);
     }

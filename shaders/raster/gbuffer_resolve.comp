@@ -61,13 +61,13 @@ void main() {
   float depth = uintBitsToFloat(uint(vis >> 32));
   uint tri = uint(vis & 0xFFFFFFFFul);
 
-  SceneVertex v0 = vertices[indices[3 * tri]];
-  SceneVertex v1 = vertices[indices[3 * tri + 1]];
-  SceneVertex v2 = vertices[indices[3 * tri + 2]];
-  vec3 a = v0.positionU.xyz, b = v1.positionU.xyz, c = v2.positionU.xyz;
-  vec2 uvA = vec2(v0.positionU.w, v0.normalV.w);
-  vec2 uvB = vec2(v1.positionU.w, v1.normalV.w);
-  vec2 uvC = vec2(v2.positionU.w, v2.normalV.w);
+  // Members are read one by one: copying whole structs out of a buffer into locals is
+  // markedly slower on lavapipe.
+  uint i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
+  vec4 pA = vertices[i0].positionU, pB = vertices[i1].positionU, pC = vertices[i2].positionU;
+  vec4 nA = vertices[i0].normalV, nB = vertices[i1].normalV, nC = vertices[i2].normalV;
+  vec3 a = pA.xyz, b = pB.xyz, c = pC.xyz;
+  vec2 uvA = vec2(pA.w, nA.w), uvB = vec2(pB.w, nB.w), uvC = vec2(pC.w, nC.w);
 
   vec2 centre = vec2(pixel) + 0.5;
   vec2 bc = rayBarycentrics(centre, a, b, c);
@@ -78,22 +78,22 @@ void main() {
   vec2 uvDx = (bcX.x - bc.x) * duvA + (bcX.y - bc.y) * duvB;
   vec2 uvDy = (bcY.x - bc.x) * duvA + (bcY.y - bc.y) * duvB;
 
-  vec3 normal = normalize(v0.normalV.xyz * (1.0 - bc.x - bc.y) + v1.normalV.xyz * bc.x +
-                          v2.normalV.xyz * bc.y);
+  vec3 normal = normalize(nA.xyz * (1.0 - bc.x - bc.y) + nB.xyz * bc.x + nC.xyz * bc.y);
   // Two-sided shading: a surface seen from behind is lit as its front, so flip the normal
   // toward the viewer using the geometric normal (interpolated normals can disagree).
   vec3 origin, dir;
   cameraRay(pc.invViewProj, pixelToNdc(centre, pc.viewport), origin, dir);
   if (dot(cross(b - a, c - a), dir) > 0.0) normal = -normal;
 
-  SceneMaterial m = materials[triangleMaterial[tri]];
-  vec4 base = m.baseColorFactor;
-  if (m.baseColorLayer >= 0)
-    base *= textureGrad(baseColorTextures, vec3(uv, float(m.baseColorLayer)), uvDx, uvDy);
-  float metallic = m.metallic, roughness = m.roughness;
-  if (m.metallicRoughnessLayer >= 0) {
-    vec4 mr = textureGrad(metallicRoughnessTextures, vec3(uv, float(m.metallicRoughnessLayer)),
-                          uvDx, uvDy);
+  uint material = triangleMaterial[tri];
+  vec4 base = materials[material].baseColorFactor;
+  int baseLayer = materials[material].baseColorLayer;
+  int mrLayer = materials[material].metallicRoughnessLayer;
+  if (baseLayer >= 0)
+    base *= textureGrad(baseColorTextures, vec3(uv, float(baseLayer)), uvDx, uvDy);
+  float metallic = materials[material].metallic, roughness = materials[material].roughness;
+  if (mrLayer >= 0) {
+    vec4 mr = textureGrad(metallicRoughnessTextures, vec3(uv, float(mrLayer)), uvDx, uvDy);
     roughness *= mr.g;  // glTF packing: G = roughness, B = metallic
     metallic *= mr.b;
   }
