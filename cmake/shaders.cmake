@@ -7,8 +7,10 @@ function(vsgl_compile_shader out_var source)
   get_filename_component(name ${source} NAME_WE)
   set(spv ${VSGL_SPIRV_DIR}/spirv/${name}.spv)
   set(header ${VSGL_SPIRV_DIR}/spirv/${name}.h)
+  # The .spv comes first: glslang's depfile names it, and Ninja matches a depfile against the
+  # first output (otherwise every build would recompile every shader).
   add_custom_command(
-    OUTPUT ${header}
+    OUTPUT ${spv} ${header}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${VSGL_SPIRV_DIR}/spirv
     COMMAND ${GLSLANG_VALIDATOR} --quiet --target-env vulkan1.3 -I${CMAKE_SOURCE_DIR}/shaders
             --depfile ${spv}.d -o ${spv} ${source}
