@@ -12,28 +12,11 @@ namespace {
 // density of one view falls as 1/cos^2 towards its edges and collapses near 90 degrees.
 constexpr float kMaxSpotViewHalfAngle = 1.2f;
 
-glm::vec3 anyPerpendicularUp(const glm::vec3& forward) {
-  return std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-}
-
-struct Range {
-  float znear;
-  float zfar;
-};
-
-// Near/far planes that enclose the scene bounds as seen from `eye`.
-Range depthRange(const Bounds& b, const glm::vec3& eye) {
-  glm::vec3 c = 0.5f * (b.min + b.max);
-  float radius = 0.5f * glm::length(b.max - b.min);
-  float farthest = glm::length(c - eye) + radius;
-  return {std::max(1e-3f, 1e-4f * farthest), farthest * 1.01f + 1e-3f};
-}
-
 gpu::ShadowView perspectiveView(const glm::vec3& eye, const glm::vec3& forward, float halfAngle,
                                 const Bounds& bounds, uint32_t resolution) {
-  Range r = depthRange(bounds, eye);
+  DepthRange r = enclosingDepthRange(bounds, eye);
   glm::mat4 proj = perspectiveVulkan(2.0f * halfAngle, 1.0f, r.znear, r.zfar);
-  glm::mat4 view = lookAlong(eye, forward, anyPerpendicularUp(forward));
+  glm::mat4 view = lookAlong(eye, forward, upVectorFor(forward));
   float texelPerMetre = 2.0f * std::tan(halfAngle) / static_cast<float>(resolution);
   return {proj * view, glm::vec4(texelPerMetre, 0.0f, 0.0f, 0.0f)};
 }
@@ -56,20 +39,14 @@ LightSetup buildLightSetup(const Scene& scene, const DirectLightSettings& settin
     g.position = glm::vec4(light.position, 1.0f);
     g.direction = glm::vec4(glm::normalize(light.direction), 0.0f);
     g.radiance = glm::vec4(light.color * light.intensity, light.range);
-    float cosOuter = std::cos(light.outerConeAngle), cosInner = std::cos(light.innerConeAngle);
-    g.spot.x = 1.0f / std::max(1e-3f, cosInner - cosOuter);
-    g.spot.y = -cosOuter * g.spot.x;
+    glm::vec2 falloff = spotFalloff(light);
+    g.spot = glm::vec4(falloff, 0.0f, 0.0f);
     g.info = glm::uvec4(static_cast<uint32_t>(light.type), static_cast<uint32_t>(setup.views.size()), 0u, 0u);
     if (settings.shadows) {
       size_t first = setup.views.size();
       if (light.type == LightType::Directional) {
-        glm::vec3 d = glm::vec3(g.direction);
-        glm::vec3 c = 0.5f * (bounds.min + bounds.max);
-        float radius = std::max(1e-3f, 0.5f * glm::length(bounds.max - bounds.min));
-        glm::vec3 eye = c - d * (2.0f * radius);
-        glm::mat4 proj = orthographicVulkan(radius, radius, 0.5f * radius, 3.5f * radius);
-        glm::mat4 view = lookAlong(eye, d, anyPerpendicularUp(d));
-        setup.views.push_back({proj * view, glm::vec4(0.0f, 2.0f * radius / static_cast<float>(res), 0.0f, 0.0f)});
+        EnclosingOrtho o = enclosingOrthographic(bounds, glm::vec3(g.direction));
+        setup.views.push_back({o.proj * o.view, glm::vec4(0.0f, 2.0f * o.halfExtent / static_cast<float>(res), 0.0f, 0.0f)});
       } else if (light.type == LightType::Spot && light.outerConeAngle <= kMaxSpotViewHalfAngle) {
         // One texel of margin beyond the cone keeps PCF taps at the cone edge inside the map.
         float half = std::min(light.outerConeAngle + 2.0f / static_cast<float>(res), kMaxSpotViewHalfAngle + 0.1f);

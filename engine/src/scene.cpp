@@ -38,4 +38,10 @@ Camera defaultCamera(const Scene& scene) {
   return camera;
 }
 
+glm::vec2 spotFalloff(const Light& light) {
+  float cosOuter = std::cos(light.outerConeAngle), cosInner = std::cos(light.innerConeAngle);
+  float scale = 1.0f / std::max(1e-3f, cosInner - cosOuter);
+  return {scale, -cosOuter * scale};
+}
+
 }  // namespace engine

@@ -1,5 +1,6 @@
 #include "engine/view.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace engine {
@@ -52,6 +53,29 @@ View makeView(const glm::mat4& view, const glm::mat4& proj, uint32_t width, uint
   v.width = width;
   v.height = height;
   return v;
+}
+
+glm::vec3 upVectorFor(const glm::vec3& forward) {
+  return std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+}
+
+DepthRange enclosingDepthRange(const Bounds& b, const glm::vec3& eye) {
+  glm::vec3 c = 0.5f * (b.min + b.max);
+  float radius = 0.5f * glm::length(b.max - b.min);
+  float farthest = glm::length(c - eye) + radius;
+  // NDC depth resolves distance d to about d^2 / znear * 6e-8: a near plane at 1 % of the far
+  // distance keeps light-view positions to ~1e-5 of the scene size (geometry within that 1 % of
+  // a light is neither seen by its RSM nor casts shadows in its shadow map).
+  return {std::max(1e-3f, 1e-2f * farthest), farthest * 1.01f + 1e-3f};
+}
+
+EnclosingOrtho enclosingOrthographic(const Bounds& bounds, const glm::vec3& direction) {
+  glm::vec3 d = glm::normalize(direction);
+  glm::vec3 c = 0.5f * (bounds.min + bounds.max);
+  float radius = std::max(1e-3f, 0.5f * glm::length(bounds.max - bounds.min));
+  glm::vec3 eye = c - d * (2.0f * radius);
+  return {lookAlong(eye, d, upVectorFor(d)),
+          orthographicVulkan(radius, radius, 0.5f * radius, 3.5f * radius), eye, radius};
 }
 
 View cameraView(const Camera& camera, uint32_t width, uint32_t height) {

@@ -47,6 +47,10 @@ struct Light {
   float outerConeAngle = 0.7853982f;   // radians, spot only, in (0, pi/2]
 };
 
+// KHR_lights_punctual's spot falloff as scale and offset: falloff(cos) = saturate(cos * x + y)^2,
+// 1 inside the inner cone, 0 outside the outer cone.
+glm::vec2 spotFalloff(const Light& light);
+
 struct Camera {
   std::string name;
   glm::mat4 cameraToWorld{1.0f};  // camera looks down its local -Z, +Y up (glTF)

@@ -33,4 +33,25 @@ View cameraView(const Camera& camera, uint32_t width, uint32_t height);
 
 View makeView(const glm::mat4& view, const glm::mat4& proj, uint32_t width, uint32_t height);
 
+// An up vector not parallel to `forward`, for views placed by code (lights).
+glm::vec3 upVectorFor(const glm::vec3& forward);
+
+// Near and far planes for a light view from `eye` that encloses the whole of `bounds` (near at
+// 1 % of the far distance: see view.cpp for the depth-precision trade).
+struct DepthRange {
+  float znear;
+  float zfar;
+};
+DepthRange enclosingDepthRange(const Bounds& bounds, const glm::vec3& eye);
+
+// An orthographic view looking along `direction` that encloses `bounds`: eye two bounding
+// radii before the centre, a square window one radius wide on each side.
+struct EnclosingOrtho {
+  glm::mat4 view;
+  glm::mat4 proj;
+  glm::vec3 eye;
+  float halfExtent;  // metres
+};
+EnclosingOrtho enclosingOrthographic(const Bounds& bounds, const glm::vec3& direction);
+
 }  // namespace engine

@@ -1,0 +1,146 @@
+// The file's top-level materials, lights and cameras, validated and converted once; nodes then
+// instance them (gltf_loader.cpp, gltf_meshes.cpp).
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+
+#include "gltf_scene_builder.h"
+
+namespace engine::gltf_detail {
+namespace {
+
+bool inUnitRange(double v) {
+  return v >= 0.0 && v <= 1.0;
+}
+
+}  // namespace
+
+// Maps a glTF texture to the Scene::textures index of its source image.
+int SceneBuilder::textureImage(const tinygltf::TextureInfo& info, const std::string& where) const {
+  if (info.index < 0) return -1;
+  if (info.texCoord != 0) {
+    fail(where + " uses TEXCOORD_" + std::to_string(info.texCoord) +
+         " (only TEXCOORD_0 is supported)");
+  }
+  const tinygltf::Texture& texture = at(model_.textures, info.index, "texture", where);
+  if (texture.source < 0) {
+    fail(where + ": texture " + std::to_string(info.index) +
+         " has no source image (image extensions are not supported)");
+  }
+  at(model_.images, texture.source, "image", where + ": texture " + std::to_string(info.index));
+  return texture.source;
+}
+
+void SceneBuilder::convertMaterials() {
+  for (size_t m = 0; m < model_.materials.size(); ++m) {
+    const tinygltf::Material& in = model_.materials[m];
+    const tinygltf::PbrMetallicRoughness& pbr = in.pbrMetallicRoughness;
+    const std::string where = label("material", in.name, m);
+    Material out;
+    out.name = in.name;
+    if (pbr.baseColorFactor.size() != 4) fail(where + ": baseColorFactor must have 4 values");
+    for (int c = 0; c < 4; ++c) {
+      const double v = pbr.baseColorFactor[static_cast<size_t>(c)];
+      if (!inUnitRange(v)) fail(where + ": baseColorFactor values must lie in [0, 1]");
+      out.baseColorFactor[c] = static_cast<float>(v);
+    }
+    if (!inUnitRange(pbr.metallicFactor)) fail(where + ": metallicFactor must lie in [0, 1]");
+    if (!inUnitRange(pbr.roughnessFactor)) fail(where + ": roughnessFactor must lie in [0, 1]");
+    out.metallicFactor = static_cast<float>(pbr.metallicFactor);
+    out.roughnessFactor = static_cast<float>(pbr.roughnessFactor);
+    out.baseColorTexture = textureImage(pbr.baseColorTexture, where + " baseColorTexture");
+    out.metallicRoughnessTexture =
+        textureImage(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
+    out.doubleSided = in.doubleSided;
+    scene_.materials.push_back(std::move(out));
+  }
+}
+
+void SceneBuilder::convertLights() {
+  for (size_t l = 0; l < model_.lights.size(); ++l) {
+    const tinygltf::Light& in = model_.lights[l];
+    const std::string where = label("light", in.name, l);
+    Light out;
+    out.name = in.name;
+    if (in.type == "directional") {
+      out.type = LightType::Directional;
+    } else if (in.type == "point") {
+      out.type = LightType::Point;
+    } else if (in.type == "spot") {
+      out.type = LightType::Spot;
+    } else {
+      fail(where + ": unknown light type '" + in.type + "'");
+    }
+    if (!in.color.empty()) {
+      if (in.color.size() != 3) fail(where + ": color must have 3 values");
+      for (int c = 0; c < 3; ++c) {
+        const double v = in.color[static_cast<size_t>(c)];
+        if (!(v >= 0.0) || !std::isfinite(v)) fail(where + ": color values must be >= 0");
+        out.color[c] = static_cast<float>(v);
+      }
+    }
+    if (!(in.intensity >= 0.0) || !std::isfinite(in.intensity)) {
+      fail(where + ": intensity must be >= 0");
+    }
+    if (!(in.range >= 0.0) || !std::isfinite(in.range)) fail(where + ": range must be >= 0");
+    out.intensity = static_cast<float>(in.intensity);
+    out.range = static_cast<float>(in.range);
+    if (out.type == LightType::Spot) {
+      const double inner = in.spot.innerConeAngle;
+      const double outer = in.spot.outerConeAngle;
+      if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2)) {
+        fail(where + ": spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= "
+                     "pi/2 (got innerConeAngle " +
+             std::to_string(inner) + ", outerConeAngle " + std::to_string(outer) + ")");
+      }
+      out.innerConeAngle = static_cast<float>(inner);
+      out.outerConeAngle = static_cast<float>(outer);
+    }
+    lights_.push_back(std::move(out));
+  }
+}
+
+void SceneBuilder::convertCameras() {
+  for (size_t c = 0; c < model_.cameras.size(); ++c) {
+    const tinygltf::Camera& in = model_.cameras[c];
+    const std::string where = label("camera", in.name, c);
+    Camera out;
+    out.name = in.name;
+    if (in.type == "perspective") {
+      const tinygltf::PerspectiveCamera& p = in.perspective;
+      if (!(p.yfov > 0.0 && p.yfov < std::numbers::pi)) fail(where + ": yfov must be in (0, pi)");
+      if (!(p.znear > 0.0) || !std::isfinite(p.znear)) fail(where + ": znear must be > 0");
+      if (!(p.zfar == 0.0 || p.zfar > p.znear) || !std::isfinite(p.zfar)) {
+        fail(where + ": zfar must be > znear (or absent for an infinite projection)");
+      }
+      if (!(p.aspectRatio >= 0.0) || !std::isfinite(p.aspectRatio)) {
+        fail(where + ": aspectRatio must be > 0");
+      }
+      out.perspective = true;
+      out.yfov = static_cast<float>(p.yfov);
+      out.aspectRatio = static_cast<float>(p.aspectRatio);
+      out.znear = static_cast<float>(p.znear);
+      out.zfar = static_cast<float>(p.zfar);
+    } else if (in.type == "orthographic") {
+      const tinygltf::OrthographicCamera& o = in.orthographic;
+      if (!(o.xmag != 0.0 && o.ymag != 0.0) || !std::isfinite(o.xmag) ||
+          !std::isfinite(o.ymag)) {
+        fail(where + ": xmag and ymag must be non-zero");
+      }
+      if (!(o.znear >= 0.0) || !(o.zfar > o.znear) || !std::isfinite(o.zfar)) {
+        fail(where + ": orthographic znear must be >= 0 and zfar > znear");
+      }
+      out.perspective = false;
+      out.xmag = static_cast<float>(std::abs(o.xmag));
+      out.ymag = static_cast<float>(std::abs(o.ymag));
+      out.znear = static_cast<float>(o.znear);
+      out.zfar = static_cast<float>(o.zfar);
+    } else {
+      fail(where + ": unknown camera type '" + in.type + "'");
+    }
+    cameras_.push_back(std::move(out));
+  }
+}
+
+}  // namespace engine::gltf_detail

@@ -1,0 +1,61 @@
+#include "reference/rsm_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gi {
+namespace {
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+}  // namespace
+
+std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surface,
+                                                const RsmView& view, const engine::Light& light) {
+  const glm::dmat4 inv(view.invViewProjRelative);
+  const glm::dvec3 axis(view.axis);
+  const glm::dvec3 radiance = glm::dvec3(light.color) * static_cast<double>(light.intensity);
+  const glm::dvec2 falloffParams(engine::spotFalloff(light));
+  const double texelArea = view.texelArea;
+  std::vector<RsmTexelReference> out(surface.samples.size());
+  for (uint32_t y = 0; y < surface.height; ++y) {
+    for (uint32_t x = 0; x < surface.width; ++x) {
+      const engine::GBufferSample& s = surface.at(x, y);
+      RsmTexelReference& t = out[size_t{y} * surface.width + x];
+      if (s.background()) continue;
+      glm::dvec2 ndc((x + 0.5) / surface.width * 2.0 - 1.0, (y + 0.5) / surface.height * 2.0 - 1.0);
+      glm::dvec4 h = inv * glm::dvec4(ndc, static_cast<double>(s.depth), 1.0);
+      glm::dvec3 offset = glm::dvec3(h) / h.w;
+      if (view.perspective) {
+        double c = glm::dot(glm::normalize(offset), axis);
+        double falloff = std::clamp(c * falloffParams.x + falloffParams.y, 0.0, 1.0);
+        t.incident = radiance * (falloff * falloff * texelArea * c * c * c);
+      } else {
+        t.incident = radiance * texelArea;
+      }
+      t.lit = luminance(t.incident) > 0.0 ? 1.0 : 0.0;
+      t.offset = offset * t.lit;
+      t.diffuseFlux = s.diffuse * t.incident;
+      t.specularFlux = s.f0 * t.incident;
+      t.roughness = s.roughness * t.lit;
+    }
+  }
+  return out;
+}
+
+double rsmSolidAngleSum(uint32_t size, double halfAngle) {
+  const double tanHalf = std::tan(halfAngle);
+  const double side = 2.0 * tanHalf / size;  // texel side on the plane at unit distance
+  double sum = 0.0;
+  for (uint32_t y = 0; y < size; ++y) {
+    for (uint32_t x = 0; x < size; ++x) {
+      double u = ((x + 0.5) / size * 2.0 - 1.0) * tanHalf;
+      double v = ((y + 0.5) / size * 2.0 - 1.0) * tanHalf;
+      double cosTheta = 1.0 / std::sqrt(1.0 + u * u + v * v);
+      sum += side * side * cosTheta * cosTheta * cosTheta;
+    }
+  }
+  return sum;
+}
+
+}  // namespace gi

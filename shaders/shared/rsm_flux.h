@@ -1,0 +1,37 @@
+// Reflective shadow map (Dachsbacher & Stamminger 2005) flux pass: turns the G-buffer rendered
+// from the light into virtual point lights. Per texel (vsgl-math.md section 2):
+//   incident flux  Phi_in = I(theta) * A * cos^3(theta)   (spot; A = texel area on the plane at
+//                  unit distance, cos^3 = solid-angle Jacobian of that plane)
+//                  Phi_in = E * texel area                (directional, orthographic RSM)
+//   reflected flux Phi_d = albedo * Phi_in,  Phi_s = F0 * Phi_in
+// Images written (all R32G32B32A32_SFLOAT):
+//   position  xyz = VPL position minus the RSM origin (the light position, or the eye of the
+//             directional light's orthographic view), w = 1 for a VPL with power, else 0
+//   diffuse   rgb = Phi_d (W), a = Phi_in (W)
+//   specular  rgb = Phi_s (W), a = perceptual roughness
+// The normal stays in the light G-buffer (RG16_SNORM octahedral). Texels on background or
+// outside the spot cone carry zero power and w = 0.
+#ifndef SHADERS_SHARED_RSM_FLUX_H
+#define SHADERS_SHARED_RSM_FLUX_H
+#include "interop.h"
+
+#define RSM_GROUP_X 8
+#define RSM_GROUP_Y 8
+
+SHARED_BEGIN
+
+struct RsmFluxPush {
+  mat4 invViewProjRelative;  // inverse of (projection * light rotation): NDC -> offset from origin
+  vec4 axis;                 // xyz unit direction the light travels (view axis), w unused
+  vec4 radiance;             // rgb = colour * intensity: W/sr (spot) or W/m^2 (directional)
+  vec4 spot;                 // x = angle scale, y = angle offset (KHR falloff), z = texel area A
+                             // (spot: on the unit-distance plane; directional: m^2), w unused
+  uvec2 size;                // RSM texels
+  uint perspective;          // 1 = spot (perspective RSM), 0 = directional (orthographic)
+  uint pad;
+};
+
+SHARED_END
+
+SHARED_ASSERT_SIZE(RsmFluxPush, 128);
+#endif
