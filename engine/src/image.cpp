@@ -1,5 +1,6 @@
 #include "engine/image.h"
 
+#include <algorithm>
 #include <cstring>
 #include <utility>
 
@@ -57,6 +58,14 @@ Image::Image(Context& ctx, const ImageDesc& desc) : device_(ctx.device()), desc_
   viewInfo.format = desc.format;
   viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, desc.mips, 0, desc.layers};
   VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view_));
+  if (desc.mips > 1 && (desc.usage & VK_IMAGE_USAGE_STORAGE_BIT)) {
+    for (uint32_t level = 0; level < desc.mips; ++level) {
+      viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, desc.layers};
+      VkImageView view = VK_NULL_HANDLE;
+      VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view));
+      mipViews_.push_back(view);
+    }
+  }
 }
 
 Image::~Image() { release(); }
@@ -69,6 +78,7 @@ Image& Image::operator=(Image&& other) noexcept {
     device_ = std::exchange(other.device_, VK_NULL_HANDLE);
     image_ = std::exchange(other.image_, VK_NULL_HANDLE);
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    mipViews_ = std::exchange(other.mipViews_, {});
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     desc_ = other.desc_;
     layout_ = std::exchange(other.layout_, VK_IMAGE_LAYOUT_UNDEFINED);
@@ -79,6 +89,8 @@ Image& Image::operator=(Image&& other) noexcept {
 void Image::release() {
   if (!device_) return;
   if (view_) vkDestroyImageView(device_, view_, nullptr);
+  for (VkImageView v : mipViews_) vkDestroyImageView(device_, v, nullptr);
+  mipViews_.clear();
   if (image_) vkDestroyImage(device_, image_, nullptr);
   if (memory_) vkFreeMemory(device_, memory_, nullptr);
   view_ = VK_NULL_HANDLE;
@@ -113,16 +125,17 @@ void Image::upload(Context& ctx, const void* data, size_t bytes) {
   });
 }
 
-std::vector<std::byte> Image::readback(Context& ctx) {
-  const size_t layerBytes = size_t{desc_.width} * desc_.height * texelBytes(desc_.format);
+std::vector<std::byte> Image::readback(Context& ctx, uint32_t level) {
+  const uint32_t width = std::max(1u, desc_.width >> level), height = std::max(1u, desc_.height >> level);
+  const size_t layerBytes = size_t{width} * height * texelBytes(desc_.format);
   Buffer staging(ctx, layerBytes * desc_.layers, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                  MemoryUsage::Readback);
   VkImageLayout original = layout_;
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     imageBarrier(cmd, *this, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, desc_.layers};
-    region.imageExtent = {desc_.width, desc_.height, 1};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, desc_.layers};
+    region.imageExtent = {width, height, 1};
     vkCmdCopyImageToBuffer(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
                            &region);
     if (original != VK_IMAGE_LAYOUT_UNDEFINED) imageBarrier(cmd, *this, original);

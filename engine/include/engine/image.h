@@ -31,6 +31,8 @@ class Image {
 
   VkImage handle() const { return image_; }
   VkImageView view() const { return view_; }
+  // A view of one mip level (storage writes need one level per view); index 0 = base level.
+  VkImageView mipView(uint32_t level) const { return mipViews_.at(level); }
   const ImageDesc& desc() const { return desc_; }
   VkImageLayout layout() const { return layout_; }
   void setLayout(VkImageLayout layout) { layout_ = layout; }
@@ -38,9 +40,9 @@ class Image {
   // Uploads tightly packed texels: for each layer, mip 0..mips-1 in order. Leaves the image in
   // SHADER_READ_ONLY_OPTIMAL. Blocking (scene upload time).
   void upload(Context& ctx, const void* data, size_t bytes);
-  // Copies mip 0 of every layer back, tightly packed (blocking; tests and tools). The image is
-  // returned to the layout it had.
-  std::vector<std::byte> readback(Context& ctx);
+  // Copies one mip level of every layer back, tightly packed (blocking; tests and tools). The
+  // image is returned to the layout it had.
+  std::vector<std::byte> readback(Context& ctx, uint32_t level = 0);
 
   static size_t texelBytes(VkFormat format);
 
@@ -49,6 +51,7 @@ class Image {
   VkDevice device_ = VK_NULL_HANDLE;
   VkImage image_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
+  std::vector<VkImageView> mipViews_;  // only for storage images with more than one level
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   ImageDesc desc_;
   VkImageLayout layout_ = VK_IMAGE_LAYOUT_UNDEFINED;

@@ -28,6 +28,10 @@ struct Binding {
   static Binding storageImage(const Image& i) {
     return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {}, {VK_NULL_HANDLE, i.view(), i.layout()}};
   }
+  // One mip level of a storage image with several levels.
+  static Binding storageImage(const Image& i, uint32_t level) {
+    return {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {}, {VK_NULL_HANDLE, i.mipView(level), i.layout()}};
+  }
   static Binding sampled(const Image& i, VkSampler sampler) {
     return {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {sampler, i.view(), i.layout()}};
   }
