@@ -1,0 +1,33 @@
+// VSGL generation by filtered importance sampling ("filtered sampling" in [S3] Table 1): one
+// dispatch of vsgl_generate.comp over the attribute pyramids writes N gpu::Vsgl records.
+#pragma once
+
+#include "passes/vsgl_attributes.h"
+#include "shared/vsgl.h"
+
+namespace gi {
+
+struct VsglSettings {
+  uint32_t count = 1024;             // N, [1, maxCount] VSGLs; cost ~ N (generation and shading)
+  float kernelScale = 1.0f;          // K, [1, N]: kernels hold K/N of the PDF; larger = blurrier
+                                     // and temporally steadier (paper: 1)
+  uint32_t rule = VSGL_RULE_MODIFIED;  // VSGL_RULE_TOK15 or VSGL_RULE_MODIFIED (+~0 cost)
+};
+
+class VsglGenerator {
+ public:
+  VsglGenerator(engine::Context& ctx, uint32_t maxCount);
+
+  void record(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
+              const VsglSettings& settings, engine::GpuProfiler* profiler = nullptr);
+
+  const engine::Buffer& vsgls() const { return vsgls_; }  // gpu::Vsgl[maxCount]
+
+ private:
+  uint32_t maxCount_;
+  engine::ComputeProgram program_;
+  engine::Sampler sampler_;  // unused by texelFetch, but a combined image sampler needs one
+  engine::Buffer vsgls_;
+};
+
+}  // namespace gi

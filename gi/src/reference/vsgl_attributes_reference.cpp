@@ -1,0 +1,42 @@
+#include "reference/vsgl_attributes_reference.h"
+
+#include <cmath>
+
+#include "reference/vsgl_sampling.h"
+#include "shared/vsgl.h"
+
+namespace gi {
+namespace {
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+bool finite(const glm::vec4& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+}  // namespace
+
+std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(const RsmImages& rsm,
+                                                                            const RsmView& view) {
+  std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> out;
+  for (auto& a : out) a.assign(rsm.position.size(), glm::dvec4(0.0));
+  for (size_t i = 0; i < rsm.position.size(); ++i) {
+    const glm::vec4 &p = rsm.position[i], &d = rsm.diffuse[i], &s = rsm.specular[i];
+    if (!(p.w > 0.0f && finite(p) && finite(d) && finite(s))) continue;
+    const glm::dvec3 y(p), n = rsm.surface.samples[i].normal;
+    const glm::dvec3 toLight = view.perspective ? -glm::normalize(y) : -glm::dvec3(view.axis);
+    const double wd = luminance(glm::dvec3(d)), ws = luminance(glm::dvec3(s));
+    const SgLobe lobe = specularLobe(n, toLight, static_cast<double>(s.a));
+    const double rs = banerjeeMeanLength(lobe.sharpness);
+    const double yy = glm::dot(y, y);
+    out[VSGL_ATTR_DIFFUSE_POWER][i] = glm::dvec4(glm::dvec3(d), wd);
+    out[VSGL_ATTR_DIFFUSE_POSITION][i] = glm::dvec4(wd * y, wd * yy);
+    out[VSGL_ATTR_DIFFUSE_AXIS][i] = glm::dvec4(wd * VSGL_DIFFUSE_LOBE_LENGTH * n, wd + ws);
+    out[VSGL_ATTR_SPECULAR_POWER][i] = glm::dvec4(glm::dvec3(s), ws);
+    out[VSGL_ATTR_SPECULAR_POSITION][i] = glm::dvec4(ws * y, ws * yy);
+    out[VSGL_ATTR_SPECULAR_AXIS][i] = glm::dvec4(ws * rs * lobe.axis, 0.0);
+  }
+  return out;
+}
+
+}  // namespace gi

@@ -1,0 +1,41 @@
+// Per-VPL lobe encodings for the summable VSGL axes (vsgl-math.md section 3.3).
+#ifndef SHADERS_COMMON_VSGL_LOBES_GLSL
+#define SHADERS_COMMON_VSGL_LOBES_GLSL
+
+// Inverse of Banerjee's vMF sharpness estimate kappa(r) = r (3 - r^2) / (1 - r^2): the mean
+// length r in [0, 1) whose estimate is `sharpness`, so a one-VPL cluster reproduces its own
+// sharpness. Below 64 the trigonometric closed form of the cubic (Peters 2016, via Tokuyoshi's
+// VSGL code); above, it cancels in fp32 (r ~ 1 - 1/lambda), so we use the expansion
+// 1 - r = 1 / ((lambda - 1/2) (1 + 1.25 / lambda^2)), accurate to O(lambda^-4) (< 1e-7 there).
+float banerjeeMeanLength(float sharpness) {
+  if (sharpness <= 0.0) return 0.0;
+  if (sharpness > 64.0) return 1.0 - 1.0 / ((sharpness - 0.5) * (1.0 + 1.25 / (sharpness * sharpness)));
+  float a = sharpness / 3.0;
+  float a2 = a * a;
+  float phi = atan(sqrt(1.0 + 3.0 * a2 * (1.0 + a2)), a2 * a) / 3.0;
+  return sqrt(1.0 + a2) * (sqrt(3.0) * sin(phi) - cos(phi)) + a;
+}
+
+// The reflection lobe of light arriving from `toLight` at a GGX surface (normal n, perceptual
+// roughness r, alpha = max(r^2, kMinAlpha) as brdf.glsl): the NDF as an SG of sharpness
+// 2 / alpha^2 - 2 (Tokuyoshi & Harada 2019), centred on the dominant visible normal h (centre
+// of the VNDF's spherical cap, Dupuy & Benyoub 2023) and warped to reflection directions:
+// axis = reflect(-toLight, h), sharpness * h.n / (4 |toLight . h|).
+void vplSpecularLobe(vec3 n, vec3 toLight, float roughness, out vec3 axis, out float sharpness) {
+  float alpha = max(roughness * roughness, 1e-3);
+  float alpha2 = alpha * alpha;
+  float wz = dot(toLight, n);
+  vec3 wxy = toLight - wz * n;
+  float wxy2 = dot(wxy, wxy);
+  float t = sqrt(alpha2 * wxy2 + wz * wz);
+  // For light below the horizon (wz < 0) t + wz cancels; the identity below does not.
+  float z = wz >= 0.0 ? t + wz : alpha2 * wxy2 / (t - wz);
+  vec3 h = alpha2 * wxy + z * n;
+  float hLength = length(h);
+  h = hLength > 0.0 ? h / hLength : n;
+  axis = reflect(-toLight, h);
+  float lambdaH = 2.0 / alpha2 - 2.0;
+  sharpness = lambdaH * max(dot(h, n), 0.0) / max(4.0 * abs(dot(toLight, h)), 1e-8);
+}
+
+#endif

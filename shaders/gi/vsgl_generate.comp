@@ -1,0 +1,163 @@
+#version 460
+// VSGL generation by filtered importance sampling, one thread per VSGL (vsgl-math.md 5-6):
+// Fibonacci lattice point -> hierarchical warp down the PDF pyramid -> kernel level (Tok15 or
+// modified FIS bisection) -> the six attribute pyramids filtered with that kernel -> two lobes.
+// Trilinear filtering is done by hand from texelFetch with exact fp32 weights: the bisection
+// compares filtered masses, and the sampler's fixed-point weights would blur the comparison.
+// The CPU twin is generateVsglsReference (gi/src/reference/vsgl_sampling.cpp).
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/vsgl.h"
+#include "shared/vsgl_attributes.h"
+#include "shared/vsgl_generate.h"
+
+layout(local_size_x = VSGL_GENERATE_GROUP) in;
+
+// Bindings VSGL_ATTR_*: the attribute pyramids (the PDF is the diffuse axis map's alpha).
+layout(binding = VSGL_ATTR_DIFFUSE_POWER) uniform sampler2D diffusePower;
+layout(binding = VSGL_ATTR_DIFFUSE_POSITION) uniform sampler2D diffusePosition;
+layout(binding = VSGL_ATTR_DIFFUSE_AXIS) uniform sampler2D diffuseAxis;
+layout(binding = VSGL_ATTR_SPECULAR_POWER) uniform sampler2D specularPower;
+layout(binding = VSGL_ATTR_SPECULAR_POSITION) uniform sampler2D specularPosition;
+layout(binding = VSGL_ATTR_SPECULAR_AXIS) uniform sampler2D specularAxis;
+layout(std430, binding = VSGL_ATTR_COUNT) writeonly buffer Vsgls { Vsgl vsgls[]; };
+layout(push_constant) uniform Push { VsglGeneratePush pc; };
+
+const float kOneBelow = 1.0 - 1.0 / 16777216.0;  // largest float below 1
+
+// Golden-ratio Fibonacci lattice with a half-step offset (no point on u = 0). The second
+// coordinate frac((i + 1/2)(phi - 1)) is computed in 32-bit fixed point: in fp32 the product
+// reaches thousands and its fraction would lose ~1e-4.
+vec2 fibonacciPoint(uint i, uint n) {
+  const uint kGolden = 2654435769u;  // round((phi - 1) * 2^32)
+  uint frac32 = i * kGolden + kGolden / 2u;
+  return vec2((float(i) + 0.5) / float(n), float(frac32 >> 8) / 16777216.0);
+}
+
+// One binary split of the warp (Clarberg et al. 2005): strict u < q never picks a part of zero
+// mass, even for u = 0; a zero parent (all-zero PDF) splits evenly.
+uint split(inout float u, float first, float second) {
+  float total = first + second;
+  float q = total > 0.0 ? first / total : 0.5;
+  if (u < q) {
+    u = min(u / q, kOneBelow);
+    return 0u;
+  }
+  u = min((u - q) / (1.0 - q), kOneBelow);
+  return 1u;
+}
+
+float pdfTexel(ivec2 t, int level) { return texelFetch(diffuseAxis, t, level).w; }
+
+// Vulkan LINEAR filtering with CLAMP_TO_EDGE on one level, exact weights.
+vec4 bilinear(sampler2D s, vec2 x, int level) {
+  int n = int(pc.size) >> level;
+  vec2 t = x * float(n) - 0.5;
+  vec2 base = floor(t);
+  vec2 f = t - base;
+  ivec2 i0 = clamp(ivec2(base), ivec2(0), ivec2(n - 1));
+  ivec2 i1 = clamp(ivec2(base) + 1, ivec2(0), ivec2(n - 1));
+  vec4 top = mix(texelFetch(s, i0, level), texelFetch(s, ivec2(i1.x, i0.y), level), f.x);
+  vec4 bottom = mix(texelFetch(s, ivec2(i0.x, i1.y), level), texelFetch(s, i1, level), f.x);
+  return mix(top, bottom, f.y);
+}
+
+vec4 trilinear(sampler2D s, vec2 x, float level) {
+  level = clamp(level, 0.0, float(pc.topLevel));
+  float low = floor(level);
+  int l0 = int(low), l1 = min(l0 + 1, int(pc.topLevel));
+  return mix(bilinear(s, x, l0), bilinear(s, x, l1), level - low);
+}
+
+// PDF mass inside a level-l kernel at x: 4^l p~(x, l) / (M p_top) ([S3] Eq. 3's left side).
+float kernelMass(vec2 x, float level, float pTop) {
+  float m = float(pc.size) * float(pc.size);
+  return exp2(2.0 * level) * trilinear(diffuseAxis, x, level).w / (pTop * m);
+}
+
+float modifiedFisLevel(vec2 x, float pTop) {
+  float top = float(pc.topLevel);
+  float target = pc.kernelScale / float(pc.count);
+  if (kernelMass(x, 0.0, pTop) >= target) return 0.0;  // a spike: VSGLs share the texel
+  if (pc.kernelScale >= float(pc.count)) return top;   // no kernel is large enough
+  float lo = 0.0, hi = top;
+  for (int step = 0; step < VSGL_BISECTION_STEPS; ++step) {
+    float mid = 0.5 * (lo + hi);
+    if (kernelMass(x, mid, pTop) < target) lo = mid; else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Tok15 ([S3] Eq. 1 with K): 4^l / M = K / (N p) with the unfiltered density at the centre.
+float tok15Level(float density) {
+  float top = float(pc.topLevel);
+  if (!(density > 0.0)) return top;
+  float m = float(pc.size) * float(pc.size);
+  return clamp(0.5 * log2(pc.kernelScale * m / (float(pc.count) * density)), 0.0, top);
+}
+
+float banerjeeSharpness(float r) {
+  if (!(r > 0.0)) return 0.0;
+  if (r >= 1.0) return float(VSGL_MAX_SHARPNESS);
+  return min(r * (3.0 - r * r) / ((1.0 - r) * (1.0 + r)), float(VSGL_MAX_SHARPNESS));
+}
+
+// One lobe from kernel sums (vsgl-math.md 3.2): mean, per-axis variance (never negative),
+// axis and Banerjee sharpness (axis length 0 -> isotropic), power.
+VsglLobe buildLobe(vec4 power, vec4 position, vec4 axis) {
+  VsglLobe lobe;
+  float w = power.w;
+  if (!(w > 0.0)) {
+    lobe.meanVariance = vec4(pc.origin.xyz, 0.0);
+    lobe.axisSharpness = vec4(0.0, 0.0, 1.0, 0.0);
+    lobe.power = vec4(0.0);
+    return lobe;
+  }
+  vec3 mean = position.xyz / w;
+  float variance = max(0.0, position.w / w - dot(mean, mean)) * 0.5;
+  vec3 meanAxis = axis.xyz / w;
+  float meanLength = length(meanAxis);
+  vec3 unitAxis = meanLength > 0.0 ? meanAxis / meanLength : vec3(0.0, 0.0, 1.0);
+  lobe.meanVariance = vec4(pc.origin.xyz + mean, variance);
+  lobe.axisSharpness = vec4(unitAxis, banerjeeSharpness(meanLength));
+  lobe.power = power;
+  return lobe;
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  vec2 u = fibonacciPoint(i, pc.count);
+  ivec2 node = ivec2(0);
+  for (int level = int(pc.topLevel); level > 0; --level) {
+    int child = level - 1;
+    ivec2 c0 = node * 2;
+    float a = pdfTexel(c0, child), b = pdfTexel(c0 + ivec2(1, 0), child);
+    float c = pdfTexel(c0 + ivec2(0, 1), child), e = pdfTexel(c0 + ivec2(1, 1), child);
+    uint column = split(u.x, a + c, b + e);
+    uint row = column == 0u ? split(u.y, a, c) : split(u.y, b, e);
+    node = c0 + ivec2(column, row);
+  }
+  float size = float(pc.size);
+  vec2 x = min((vec2(node) + u) / size, (vec2(node) + kOneBelow) / size);
+  float pTop = pdfTexel(ivec2(0), int(pc.topLevel));
+  float density = pTop > 0.0 ? pdfTexel(node, 0) / pTop : 0.0;
+  bool modified = pc.rule == VSGL_RULE_MODIFIED;
+  float level = modified ? modifiedFisLevel(x, pTop) : tok15Level(density);
+  float filtered = pTop > 0.0 ? trilinear(diffuseAxis, x, level).w / pTop : 0.0;
+  // Cluster sums from per-texel means (vsgl-math.md 5.3 units trap): modified FIS scales the
+  // kernel to mass 1/N, M / (N p~); Tok15 divides by the unfiltered density, M / max(N p, 1).
+  float m = size * size;
+  float scale = !(pTop > 0.0) ? 0.0
+              : modified ? (filtered > 0.0 ? m / (float(pc.count) * filtered) : 0.0)
+                         : m / max(float(pc.count) * density, 1.0);
+  Vsgl v;
+  v.diffuse = buildLobe(scale * trilinear(diffusePower, x, level),
+                        scale * trilinear(diffusePosition, x, level),
+                        scale * trilinear(diffuseAxis, x, level));
+  v.specular = buildLobe(scale * trilinear(specularPower, x, level),
+                         scale * trilinear(specularPosition, x, level),
+                         scale * trilinear(specularAxis, x, level));
+  v.kernel = vec4(x, level, filtered);
+  vsgls[i] = v;
+}

@@ -1,0 +1,40 @@
+// Virtual spherical Gaussian lights (vsgl-math.md sections 3-6): the generation settings and the
+// VSGL record that generation writes and shading reads. One record = one kernel of the RSM with
+// a diffuse and a glossy lobe, each its own positional Gaussian and SG intensity.
+#ifndef SHADERS_SHARED_VSGL_H
+#define SHADERS_SHARED_VSGL_H
+#include "interop.h"
+
+// Kernel-size rules (vsgl-math.md section 5).
+#define VSGL_RULE_TOK15 0u     // l = log4(K M / (N p(x))), estimator f~ / max(N p(x), 1)
+#define VSGL_RULE_MODIFIED 1u  // 4^l p~(x, l) / M = K / N by bisection, estimator f~ / (N p~)
+
+// Per-VPL lobe encodings (section 3.3): the diffuse lobe is the vMF fitted to the Lambert pdf,
+// sharpness 2.292504, whose Banerjee mean length is this constant.
+#define VSGL_DIFFUSE_LOBE_LENGTH 0.5749255543539332
+// Sharpness clamp: Banerjee's estimate diverges as the mean length -> 1 (one VPL, or identical
+// axes); 2^41 keeps products with other sharpnesses finite in fp32 (section 12, case 7).
+#define VSGL_MAX_SHARPNESS 2199023255552.0
+// Modified FIS: bisection iterations on the mip level (the paper's 12).
+#define VSGL_BISECTION_STEPS 12
+
+SHARED_BEGIN
+
+struct VsglLobe {
+  vec4 meanVariance;   // xyz = mean position (world, m), w = per-axis variance v (m^2, >= 0)
+  vec4 axisSharpness;  // xyz = unit SG axis, the direction light leaves the VSGL; w = sharpness
+  vec4 power;          // rgb = power Phi of the lobe (W), a = scalar weight sum (luminance)
+};
+
+struct Vsgl {
+  VsglLobe diffuse;
+  VsglLobe specular;
+  vec4 kernel;  // xy = kernel centre in [0, 1]^2 of the RSM, z = mip level l, w = p~(x, l) (mean 1)
+};
+
+SHARED_END
+
+SHARED_ASSERT_SIZE(VsglLobe, 48);
+SHARED_ASSERT_SIZE(Vsgl, 112);
+SHARED_ASSERT_OFFSET(Vsgl, kernel, 96);
+#endif

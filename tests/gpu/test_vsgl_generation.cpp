@@ -1,0 +1,214 @@
+// VSGL generation on the GPU against its CPU twins: the attribute pyramids of an RSM
+// (conservation of power through the exact-mean mips, isolation of non-finite texels, every
+// channel of level 0), and the VSGLs generated from them with both kernel rules.
+#include <cmath>
+#include <cstring>
+
+#include "engine/builtin_scenes.h"
+#include "engine/commands.h"
+#include "gpu_fixture.h"
+#include "passes/vsgl_attributes.h"
+#include "passes/vsgl_generate.h"
+#include "reference/vsgl_attributes_reference.h"
+#include "reference/vsgl_sampling.h"
+
+namespace {
+
+std::vector<glm::vec4> readLevel(engine::Context& ctx, engine::Image& image, uint32_t level) {
+  auto bytes = image.readback(ctx, level);
+  std::vector<glm::vec4> out(bytes.size() / sizeof(glm::vec4));
+  std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
+}
+
+class VsglAttributesTest : public testing_gpu::GpuTest {
+ protected:
+  static constexpr uint32_t kSize = 64;
+
+  void SetUp() override {
+    testing_gpu::GpuTest::SetUp();
+    if (IsSkipped()) return;
+    scene_ = engine::makeBuiltinScene("cornell");
+    light_ = scene_.lights.at(0);
+    view_ = gi::makeRsmView(scene_, light_, kSize);
+    gpuScene_ = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx(), scene_));
+    rasterizer_ = std::make_unique<engine::Rasterizer>(ctx());
+    resolve_ = std::make_unique<engine::GBufferResolve>(ctx());
+    rsm_ = std::make_unique<gi::ReflectiveShadowMap>(ctx(), kSize);
+    mips_ = std::make_unique<gi::MipPyramid>(ctx());
+    attributes_ = std::make_unique<gi::VsglAttributes>(ctx(), kSize);
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      rsm_->record(cmd, *gpuScene_, *rasterizer_, *resolve_, view_, light_);
+    });
+  }
+
+  void buildAttributes() {
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { attributes_->record(cmd, *rsm_, view_, *mips_); });
+  }
+
+  engine::Scene scene_;
+  engine::Light light_;
+  gi::RsmView view_;
+  std::unique_ptr<engine::SceneGpu> gpuScene_;
+  std::unique_ptr<engine::Rasterizer> rasterizer_;
+  std::unique_ptr<engine::GBufferResolve> resolve_;
+  std::unique_ptr<gi::ReflectiveShadowMap> rsm_;
+  std::unique_ptr<gi::MipPyramid> mips_;
+  std::unique_ptr<gi::VsglAttributes> attributes_;
+};
+
+TEST_F(VsglAttributesTest, TopLevelTimesTexelCountConservesRsmPower) {
+  // The 1x1 level is the mean of all texels: times M it must give back the RSM's total
+  // reflected power, within the pyramid's fp32 bound 2 L u (L = 6 levels) = 7.2e-7 relative.
+  buildAttributes();
+  auto diffuse = readLevel(ctx(), rsm_->diffuseFlux(), 0);
+  auto specular = readLevel(ctx(), rsm_->specularFlux(), 0);
+  glm::dvec3 totalDiffuse(0.0), totalSpecular(0.0);
+  for (size_t i = 0; i < diffuse.size(); ++i) {
+    totalDiffuse += glm::dvec3(diffuse[i]);
+    totalSpecular += glm::dvec3(specular[i]);
+  }
+  const double m = double(kSize) * kSize, bound = 2.0 * 6.0 * std::ldexp(1.0, -24);
+  auto topDiffuse = readLevel(ctx(), attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER), 6).at(0);
+  auto topSpecular = readLevel(ctx(), attributes_->pyramid(VSGL_ATTR_SPECULAR_POWER), 6).at(0);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(topDiffuse[k] * m, totalDiffuse[k], bound * totalDiffuse[k]) << "channel " << k;
+    EXPECT_NEAR(topSpecular[k] * m, totalSpecular[k], bound * totalSpecular[k]) << "channel " << k;
+  }
+  EXPECT_GT(totalDiffuse.g, 0.0);
+  EXPECT_GT(totalSpecular.g, 0.0);
+}
+
+TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
+  buildAttributes();
+  gi::RsmImages rsm{readLevel(ctx(), rsm_->position(), 0), readLevel(ctx(), rsm_->diffuseFlux(), 0),
+                    readLevel(ctx(), rsm_->specularFlux(), 0),
+                    engine::readbackGBuffer(ctx(), rsm_->surface())};
+  auto ref = gi::vsglAttributesReference(rsm, view_);
+  // fp32 products of a handful of roundings against double: 1e-5 relative per channel, with an
+  // absolute floor of 1e-6 of the channel's largest magnitude (axis components near zero).
+  // The specular axis also goes through the fp32 lobe and Banerjee inverse (errors near 1e-5
+  // of the mean length for sharp lobes, see vsgl_lobes.glsl), so it gets 1e-4.
+  for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
+    SCOPED_TRACE("attribute " + std::to_string(a));
+    auto gpu = readLevel(ctx(), attributes_->pyramid(a), 0);
+    double largest = 0.0;
+    for (const auto& v : ref[a])
+      for (int k = 0; k < 4; ++k) largest = std::max(largest, std::abs(v[k]));
+    const double rel = a == VSGL_ATTR_SPECULAR_AXIS ? 1e-4 : 1e-5;
+    for (size_t i = 0; i < gpu.size(); ++i)
+      for (int k = 0; k < 4; ++k)
+        ASSERT_NEAR(gpu[i][k], ref[a][i][k], rel * std::abs(ref[a][i][k]) + 1e-6 * largest)
+            << "texel " << i << " channel " << k;
+  }
+}
+
+TEST_F(VsglAttributesTest, ANonFiniteTexelDoesNotPoisonThePyramid) {
+  // Inject a NaN and an Inf into two lit RSM texels: they must contribute zero, and every level
+  // of every pyramid must stay finite (vsgl-math.md section 12, case 14).
+  auto diffuse = readLevel(ctx(), rsm_->diffuseFlux(), 0);
+  auto position = readLevel(ctx(), rsm_->position(), 0);
+  std::vector<size_t> lit;
+  for (size_t i = 0; i < position.size() && lit.size() < 2; ++i)
+    if (position[i].w > 0.0f) lit.push_back(i);
+  ASSERT_EQ(lit.size(), 2u);
+  diffuse[lit[0]].g = std::nanf("");
+  position[lit[1]].x = INFINITY;
+  rsm_->diffuseFlux().upload(ctx(), diffuse.data(), diffuse.size() * sizeof(glm::vec4));
+  rsm_->position().upload(ctx(), position.data(), position.size() * sizeof(glm::vec4));
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    engine::imageBarrier(cmd, rsm_->diffuseFlux(), VK_IMAGE_LAYOUT_GENERAL);
+    engine::imageBarrier(cmd, rsm_->position(), VK_IMAGE_LAYOUT_GENERAL);
+  });
+  buildAttributes();
+  for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
+    auto base = readLevel(ctx(), attributes_->pyramid(a), 0);
+    EXPECT_EQ(base[lit[0]], glm::vec4(0.0f)) << "attribute " << a;
+    EXPECT_EQ(base[lit[1]], glm::vec4(0.0f)) << "attribute " << a;
+    for (uint32_t level = 0; level < attributes_->pyramid(a).desc().mips; ++level)
+      for (const glm::vec4& v : readLevel(ctx(), attributes_->pyramid(a), level))
+        ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w))
+            << "attribute " << a << " level " << level;
+  }
+}
+
+// Generation from the GPU's own attribute pyramids: the reference rebuilds exact double means
+// from the GPU's level 0 and runs warp, kernel sizing and construction in double.
+// Tolerances: positions in [0,1]^2 agree to 2e-5 (fp32 rescaling through 6 warp levels plus the
+// lattice's fixed-point second coordinate, ~5e-7); levels to 2e-3 (the bisection's resolution
+// L / 2^13 = 7e-4 plus fp32 masses); powers and means to 1e-3 relative (a 2e-3 level change
+// moves the trilinear blend by that much at most on these smooth maps). A VSGL whose warp split
+// or bisection step sits within fp32 noise of its threshold can take the other branch: such
+// tie flips are counted and must stay under 2 % of N.
+TEST_F(VsglAttributesTest, GeneratedVsglsMatchReferenceForBothRules) {
+  buildAttributes();
+  std::array<gi::VectorPyramid, VSGL_ATTR_COUNT> pyramids;
+  std::vector<double> pdfBase;
+  for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
+    auto base = readLevel(ctx(), attributes_->pyramid(a), 0);
+    std::vector<glm::dvec4> wide(base.begin(), base.end());
+    if (a == VSGL_ATTR_DIFFUSE_AXIS)
+      for (const glm::dvec4& v : wide) pdfBase.push_back(v.w);
+    pyramids[a] = gi::makeVectorPyramid(wide, kSize);
+  }
+  gi::ScalarPyramid pdf = gi::makeScalarPyramid(pdfBase, kSize);
+  gi::VsglGenerator generator(ctx(), 1024);
+  for (uint32_t rule : {VSGL_RULE_TOK15, VSGL_RULE_MODIFIED}) {
+    for (uint32_t n : {64u, 1000u}) {
+      SCOPED_TRACE("rule " + std::to_string(rule) + " N " + std::to_string(n));
+      gi::VsglSettings settings{n, 1.0f, rule};
+      ctx().submitAndWait([&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, settings); });
+      auto gpu = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
+      auto ref = gi::generateVsglsReference(pyramids, pdf, glm::dvec3(view_.origin), n, 1.0, rule);
+      size_t flips = 0;
+      glm::dvec3 gpuTotal(0.0), refTotal(0.0);
+      for (uint32_t i = 0; i < n; ++i) {
+        const gpu::Vsgl &g = gpu[i], &r = ref[i];
+        gpuTotal += glm::dvec3(g.diffuse.power) + glm::dvec3(g.specular.power);
+        refTotal += glm::dvec3(r.diffuse.power) + glm::dvec3(r.specular.power);
+        bool same = glm::length(glm::dvec2(g.kernel) - glm::dvec2(r.kernel)) < 2e-5 &&
+                    std::abs(g.kernel.z - r.kernel.z) < 2e-3;
+        if (!same) {
+          ++flips;
+          continue;
+        }
+        for (const auto& [gl, rl] : {std::pair{g.diffuse, r.diffuse}, std::pair{g.specular, r.specular}}) {
+          for (int k = 0; k < 4; ++k) {
+            ASSERT_NEAR(gl.power[k], rl.power[k], 1e-3 * std::abs(rl.power[k]) + 1e-9) << "VSGL " << i;
+            ASSERT_NEAR(gl.meanVariance[k], rl.meanVariance[k],
+                        1e-3 * std::abs(rl.meanVariance[k]) + 1e-4) << "VSGL " << i;
+          }
+          ASSERT_TRUE(std::isfinite(gl.axisSharpness.w)) << "VSGL " << i;
+        }
+      }
+      std::printf("rule %u N %u: %zu tie flips, total power gpu %.6f ref %.6f\n", rule, n, flips,
+                  gpuTotal.g, refTotal.g);
+      EXPECT_LE(flips, std::max<size_t>(1, n / 50));
+      EXPECT_NEAR(gpuTotal.g, refTotal.g, 1e-3 * refTotal.g);
+    }
+  }
+}
+
+TEST_F(VsglAttributesTest, ModifiedFisConservesTheRsmPower) {
+  // Modified FIS (vsgl-math.md 5.3) shares the RSM's power among the VSGLs: the sum is within
+  // 2 % of the total for a PDF proportional to power (the energy test), and with
+  // K >= N every VSGL holds exactly total / N.
+  buildAttributes();
+  auto top = readLevel(ctx(), attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER), 6).at(0);
+  const double total = double(top.g) * kSize * kSize;
+  gi::VsglGenerator generator(ctx(), 1024);
+  for (uint32_t n : {64u, 256u, 1024u}) {
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, {n, 1.0f, VSGL_RULE_MODIFIED}); });
+    auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
+    double sum = 0.0;
+    for (uint32_t i = 0; i < n; ++i) sum += v[i].diffuse.power.g;
+    std::printf("N %u: VSGL diffuse power %.6f of RSM %.6f (%.3f %%)\n", n, sum, total, 100.0 * (sum / total - 1.0));
+    EXPECT_NEAR(sum, total, 0.02 * total) << "N " << n;
+  }
+  const uint32_t n = 16;
+  ctx().submitAndWait([&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, {n, float(n), VSGL_RULE_MODIFIED}); });
+  auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
+  for (uint32_t i = 0; i < n; ++i) EXPECT_NEAR(v[i].diffuse.power.g, total / n, 1e-5 * total / n) << "VSGL " << i;
+}
+
+}  // namespace
