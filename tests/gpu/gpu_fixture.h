@@ -6,11 +6,16 @@
 #include <memory>
 #include <string>
 
+#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
+#include "engine/image.h"
 #include "engine/vk_context.h"
 
 namespace testing_gpu {
+
+// One mip level of an RGBA32F image, read back (blocking).
+std::vector<glm::vec4> readRgba32f(engine::Context& ctx, engine::Image& image, uint32_t level = 0);
 
 class GpuTest : public ::testing::Test {
  protected:

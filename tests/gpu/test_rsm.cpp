@@ -33,13 +33,6 @@ struct GpuRsm {
   std::vector<glm::vec4> position, diffuse, specular;
 };
 
-std::vector<glm::vec4> readVec4(engine::Context& ctx, engine::Image& image) {
-  auto bytes = image.readback(ctx);
-  std::vector<glm::vec4> out(bytes.size() / sizeof(glm::vec4));
-  std::memcpy(out.data(), bytes.data(), bytes.size());
-  return out;
-}
-
 GpuRsm renderRsm(engine::Context& ctx, const engine::Scene& scene, const engine::Light& light,
                  const gi::RsmView& view, uint32_t size) {
   engine::SceneGpu gpuScene = engine::uploadScene(ctx, scene);
@@ -49,8 +42,8 @@ GpuRsm renderRsm(engine::Context& ctx, const engine::Scene& scene, const engine:
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
     rsm.record(cmd, gpuScene, rasterizer, resolve, view, light);
   });
-  return {engine::readbackGBuffer(ctx, rsm.surface()), readVec4(ctx, rsm.position()),
-          readVec4(ctx, rsm.diffuseFlux()), readVec4(ctx, rsm.specularFlux())};
+  return {engine::readbackGBuffer(ctx, rsm.surface()), testing_gpu::readRgba32f(ctx, rsm.position()),
+          testing_gpu::readRgba32f(ctx, rsm.diffuseFlux()), testing_gpu::readRgba32f(ctx, rsm.specularFlux())};
 }
 
 double maxLuminance(const std::vector<gi::RsmTexelReference>& ref) {
@@ -73,7 +66,7 @@ TEST_F(Rsm, FluxMatchesReferenceOnBuiltinScenes) {
     const engine::Light& light = scene.lights.at(0);
     gi::RsmView view = gi::makeRsmView(scene, light, size);
     GpuRsm gpu = renderRsm(ctx(), scene, light, view, size);
-    auto ref = gi::rsmFluxReference(gpu.surface, view, light);
+    auto ref = gi::rsmFluxReference(gpu.surface, view, gi::lightFluxSource(light));
     const double floor = 1e-6 * maxLuminance(ref);
     size_t lit = 0;
     for (size_t i = 0; i < ref.size(); ++i) {

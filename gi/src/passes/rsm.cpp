@@ -51,11 +51,37 @@ RsmView makeRsmView(const engine::Scene& scene, const engine::Light& light, uint
   return r;
 }
 
+FluxSource lightFluxSource(const engine::Light& light) {
+  FluxSource source;
+  source.radiance = light.color * light.intensity;
+  source.falloff = light.type == engine::LightType::Spot ? engine::spotFalloff(light) : glm::vec2(0.0f, 1.0f);
+  return source;
+}
+
+RsmView cameraImportanceView(const engine::Camera& camera, const engine::View& view) {
+  RsmView r;
+  r.view = view;
+  glm::mat4 rotation = view.view;
+  rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  r.invViewProjRelative = glm::inverse(view.proj * rotation);
+  r.origin = glm::vec3(camera.cameraToWorld[3]);
+  r.axis = -glm::normalize(glm::vec3(glm::inverse(view.view)[2]));
+  r.perspective = camera.perspective;
+  // Pixel side on the plane at unit distance (or in metres) from the projection's own scale,
+  // so the camera's aspect ratio, however it was chosen, is honoured.
+  float sideX = 2.0f / (view.proj[0][0] * static_cast<float>(view.width));
+  float sideY = 2.0f / (std::abs(view.proj[1][1]) * static_cast<float>(view.height));
+  r.tanHalfAngle = 1.0f / std::abs(view.proj[1][1]);
+  r.texelArea = sideX * sideY;
+  return r;
+}
+
 namespace {
 
-engine::Image fluxImage(engine::Context& ctx, uint32_t size) {
+engine::Image fluxImage(engine::Context& ctx, uint32_t width, uint32_t height) {
   engine::ImageDesc desc;
-  desc.width = desc.height = size;
+  desc.width = width;
+  desc.height = height;
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   return engine::Image(ctx, desc);
@@ -63,24 +89,47 @@ engine::Image fluxImage(engine::Context& ctx, uint32_t size) {
 
 }  // namespace
 
+VplImages createVplImages(engine::Context& ctx, uint32_t width, uint32_t height) {
+  VplImages v{fluxImage(ctx, width, height), fluxImage(ctx, width, height),
+              fluxImage(ctx, width, height), width, height};
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    for (engine::Image* image : {&v.position, &v.diffuse, &v.specular})
+      engine::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_GENERAL);
+  });
+  return v;
+}
+
+FluxPass::FluxPass(engine::Context& ctx)
+    : program_(ctx, "rsm_flux", kRsmFluxSpv,
+               std::vector<VkDescriptorType>(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+               sizeof(gpu::RsmFluxPush)) {}
+
+void FluxPass::record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmView& view,
+                      const FluxSource& source, VplImages& out, engine::GpuProfiler* profiler) const {
+  engine::ProfileScope scope(profiler, cmd, "rsm flux");
+  gpu::RsmFluxPush push{};
+  push.invViewProjRelative = view.invViewProjRelative;
+  push.axis = glm::vec4(view.axis, 0.0f);
+  push.radiance = glm::vec4(source.radiance, 0.0f);
+  push.spot = glm::vec4(source.falloff, view.texelArea, 0.0f);
+  push.size = glm::uvec2(out.width, out.height);
+  push.perspective = view.perspective ? 1u : 0u;
+  using engine::Binding;
+  program_.dispatch(cmd,
+                    {Binding::storageImage(surface.depth), Binding::storageImage(surface.diffuse),
+                     Binding::storageImage(surface.specular), Binding::storageImage(out.position),
+                     Binding::storageImage(out.diffuse), Binding::storageImage(out.specular)},
+                    push, engine::groupCount(out.width, RSM_GROUP_X), engine::groupCount(out.height, RSM_GROUP_Y));
+  engine::computeBarrier(cmd);
+}
+
 ReflectiveShadowMap::ReflectiveShadowMap(engine::Context& ctx, uint32_t size)
     : size_(size),
-      flux_(ctx, "rsm_flux", kRsmFluxSpv,
-            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-             VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-             VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-            sizeof(gpu::RsmFluxPush)),
+      flux_(ctx),
       visibility_(ctx, engine::Rasterizer::visibilityBytes(size, size),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly),
       surface_(engine::createGBuffer(ctx, size, size)),
-      position_(fluxImage(ctx, size)),
-      diffuse_(fluxImage(ctx, size)),
-      specular_(fluxImage(ctx, size)) {
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    for (engine::Image* image : {&position_, &diffuse_, &specular_})
-      engine::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_GENERAL);
-  });
-}
+      vpls_(createVplImages(ctx, size, size)) {}
 
 void ReflectiveShadowMap::record(VkCommandBuffer cmd, const engine::SceneGpu& scene,
                                  engine::Rasterizer& rasterizer, engine::GBufferResolve& resolve,
@@ -91,22 +140,7 @@ void ReflectiveShadowMap::record(VkCommandBuffer cmd, const engine::SceneGpu& sc
     rasterizer.record(cmd, scene, view.view.viewProj, {&visibility_, 0, size_, size_});
     resolve.record(cmd, scene, visibility_, view.view, surface_);
   }
-  engine::ProfileScope scope(profiler, cmd, "rsm flux");
-  gpu::RsmFluxPush push{};
-  push.invViewProjRelative = view.invViewProjRelative;
-  push.axis = glm::vec4(view.axis, 0.0f);
-  push.radiance = glm::vec4(light.color * light.intensity, 0.0f);
-  push.spot = glm::vec4(engine::spotFalloff(light), view.texelArea, 0.0f);
-  push.size = glm::uvec2(size_);
-  push.perspective = view.perspective ? 1u : 0u;
-  flux_.dispatch(cmd,
-                 {engine::Binding::storageImage(surface_.depth),
-                  engine::Binding::storageImage(surface_.diffuse),
-                  engine::Binding::storageImage(surface_.specular),
-                  engine::Binding::storageImage(position_), engine::Binding::storageImage(diffuse_),
-                  engine::Binding::storageImage(specular_)},
-                 push, engine::groupCount(size_, RSM_GROUP_X), engine::groupCount(size_, RSM_GROUP_Y));
-  engine::computeBarrier(cmd);
+  flux_.record(cmd, surface_, view, lightFluxSource(light), vpls_, profiler);
 }
 
 }  // namespace gi

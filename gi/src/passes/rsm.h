@@ -34,6 +34,41 @@ constexpr float kMaxRsmHalfAngle = 1.3f;
 // 4 asin(sin^2 halfAngle) (vsgl-math.md section 2).
 double frustumSolidAngle(double halfAngle);
 
+// What the flux pass emits from: a light (colour * intensity, KHR spot falloff) or the camera's
+// importance for the view-dependent PDF (unit emission, no falloff: vsgl-math.md section 7).
+struct FluxSource {
+  glm::vec3 radiance{1.0f};              // W/sr (spot), W/m^2 (directional), 1 (importance)
+  glm::vec2 falloff{0.0f, 1.0f};         // saturate(cos * x + y)^2; (0, 1) = no falloff
+};
+FluxSource lightFluxSource(const engine::Light& light);
+
+// The importance "RSM" of a camera: its own G-buffer seen as texels of a unit-intensity spot
+// without falloff at the eye, so the same flux / attribute / generation passes turn camera pixels
+// into importance VSGLs (Tokuyoshi's BRSM stage A). Works for non-square images; texelArea is
+// the pixel's area on the plane at unit distance (perspective) or in m^2 (orthographic).
+RsmView cameraImportanceView(const engine::Camera& camera, const engine::View& view);
+
+// The flux pass's outputs (formats: shaders/shared/rsm_flux.h), width x height RGBA32F.
+struct VplImages {
+  engine::Image position;
+  engine::Image diffuse;
+  engine::Image specular;
+  uint32_t width = 0;
+  uint32_t height = 0;
+};
+VplImages createVplImages(engine::Context& ctx, uint32_t width, uint32_t height);
+
+// rsm_flux.comp over any G-buffer (a light's or the camera's).
+class FluxPass {
+ public:
+  explicit FluxPass(engine::Context& ctx);
+  void record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmView& view,
+              const FluxSource& source, VplImages& out, engine::GpuProfiler* profiler = nullptr) const;
+
+ private:
+  engine::ComputeProgram program_;
+};
+
 class ReflectiveShadowMap {
  public:
   ReflectiveShadowMap(engine::Context& ctx, uint32_t size);
@@ -44,18 +79,17 @@ class ReflectiveShadowMap {
 
   uint32_t size() const { return size_; }
   engine::GBuffer& surface() { return surface_; }  // the light's G-buffer (normals live here)
-  engine::Image& position() { return position_; }
-  engine::Image& diffuseFlux() { return diffuse_; }
-  engine::Image& specularFlux() { return specular_; }
+  VplImages& vpls() { return vpls_; }
+  engine::Image& position() { return vpls_.position; }
+  engine::Image& diffuseFlux() { return vpls_.diffuse; }
+  engine::Image& specularFlux() { return vpls_.specular; }
 
  private:
   uint32_t size_;
-  engine::ComputeProgram flux_;
+  FluxPass flux_;
   engine::Buffer visibility_;
   engine::GBuffer surface_;
-  engine::Image position_;
-  engine::Image diffuse_;
-  engine::Image specular_;
+  VplImages vpls_;
 };
 
 }  // namespace gi

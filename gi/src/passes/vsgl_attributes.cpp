@@ -14,20 +14,34 @@ VsglAttributes::VsglAttributes(engine::Context& ctx, uint32_t size)
   for (auto& p : pyramids_) p = createPyramid(ctx, size);
 }
 
-void VsglAttributes::record(VkCommandBuffer cmd, ReflectiveShadowMap& rsm, const RsmView& view,
-                            const MipPyramid& mips, engine::GpuProfiler* profiler) {
+void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface,
+                            const RsmView& view, const MipPyramid& mips,
+                            engine::GpuProfiler* profiler) {
+  if (vpls.width > size_ || vpls.height > size_)
+    throw engine::Error("VSGL attributes: source " + std::to_string(vpls.width) + "x" +
+                        std::to_string(vpls.height) + " exceeds the " + std::to_string(size_) +
+                        "^2 pyramids");
   {
     engine::ProfileScope scope(profiler, cmd, "vsgl attributes");
-    gpu::VsglAttributesPush push{glm::vec4(view.axis, 0.0f), {size_, size_}, view.perspective ? 1u : 0u, 0};
+    if (vpls.width < size_ || vpls.height < size_) {
+      // Padding texels must hold zero power and zero PDF.
+      VkClearColorValue zero{};
+      VkImageSubresourceRange base{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      engine::computeToTransferBarrier(cmd);
+      for (auto& p : pyramids_) vkCmdClearColorImage(cmd, p.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &base);
+      engine::transferToComputeBarrier(cmd);
+    }
+    gpu::VsglAttributesPush push{glm::vec4(view.axis, 0.0f), {vpls.width, vpls.height},
+                                 view.perspective ? 1u : 0u, 0};
     using engine::Binding;
     program_.dispatch(cmd,
-                      {Binding::storageImage(rsm.position()), Binding::storageImage(rsm.diffuseFlux()),
-                       Binding::storageImage(rsm.specularFlux()), Binding::storageImage(rsm.surface().normal),
+                      {Binding::storageImage(vpls.position), Binding::storageImage(vpls.diffuse),
+                       Binding::storageImage(vpls.specular), Binding::storageImage(surface.normal),
                        Binding::storageImage(pyramids_[0], 0), Binding::storageImage(pyramids_[1], 0),
                        Binding::storageImage(pyramids_[2], 0), Binding::storageImage(pyramids_[3], 0),
                        Binding::storageImage(pyramids_[4], 0), Binding::storageImage(pyramids_[5], 0)},
-                      push, engine::groupCount(size_, VSGL_ATTR_GROUP_X),
-                      engine::groupCount(size_, VSGL_ATTR_GROUP_Y));
+                      push, engine::groupCount(vpls.width, VSGL_ATTR_GROUP_X),
+                      engine::groupCount(vpls.height, VSGL_ATTR_GROUP_Y));
     engine::computeBarrier(cmd);
   }
   engine::ProfileScope scope(profiler, cmd, "attribute mipmapping");

@@ -12,9 +12,12 @@ namespace gi {
 
 class VsglAttributes {
  public:
-  VsglAttributes(engine::Context& ctx, uint32_t size);  // size: the RSM's, a power of two
+  // `size`: the pyramids' base, a power of two at least as large as every source it will read.
+  VsglAttributes(engine::Context& ctx, uint32_t size);
 
-  void record(VkCommandBuffer cmd, ReflectiveShadowMap& rsm, const RsmView& view,
+  // Level 0 from `vpls` (any extent up to size x size; the rest of level 0 is zero, so padding
+  // carries no power and no PDF, vsgl-math.md 5.3) and the normals of `surface`, then the mips.
+  void record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface, const RsmView& view,
               const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr);
 
   engine::Image& pyramid(int attribute) { return pyramids_.at(attribute); }

@@ -11,11 +11,11 @@ double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0
 }  // namespace
 
 std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surface,
-                                                const RsmView& view, const engine::Light& light) {
+                                                const RsmView& view, const FluxSource& source) {
   const glm::dmat4 inv(view.invViewProjRelative);
   const glm::dvec3 axis(view.axis);
-  const glm::dvec3 radiance = glm::dvec3(light.color) * static_cast<double>(light.intensity);
-  const glm::dvec2 falloffParams(engine::spotFalloff(light));
+  const glm::dvec3 radiance(source.radiance);
+  const glm::dvec2 falloffParams(source.falloff);
   const double texelArea = view.texelArea;
   std::vector<RsmTexelReference> out(surface.samples.size());
   for (uint32_t y = 0; y < surface.height; ++y) {

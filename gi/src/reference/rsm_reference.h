@@ -20,8 +20,8 @@ struct RsmTexelReference {
   double roughness = 0.0;        // perceptual (0 when unlit)
 };
 
-std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& lightSurface,
-                                                const RsmView& view, const engine::Light& light);
+std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surface,
+                                                const RsmView& view, const FluxSource& source);
 
 // Sum over all texels of the texel solid angle A cos^3(theta) of a square perspective RSM with
 // `size` texels a side and half angle `halfAngle` (midpoint rule of the frustum's solid angle).

@@ -1,0 +1,87 @@
+// Importance VSGLs from the camera (BRSM stage A, vsgl-math.md section 7): the camera's
+// G-buffer run through the RSM flux, attribute and generation passes as a unit-intensity spot
+// without falloff. The image is not square and not a power of two, so it is padded into the
+// pyramids; padding must carry neither power nor PDF.
+#include <cmath>
+#include <cstring>
+
+#include "engine/builtin_scenes.h"
+#include "gpu_fixture.h"
+#include "passes/vsgl_generate.h"
+#include "reference/rsm_reference.h"
+
+namespace {
+
+class ImportanceVsgls : public testing_gpu::GpuTest {};
+
+TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePadding) {
+  const uint32_t width = 96, height = 64, pyramidSize = 128;
+  engine::Scene scene = engine::makeBuiltinScene("cornell");
+  const engine::Camera& camera = scene.cameras.at(0);
+  engine::View view = engine::cameraView(camera, width, height);
+  gi::RsmView importance = gi::cameraImportanceView(camera, view);
+
+  engine::SceneGpu gpuScene = engine::uploadScene(ctx(), scene);
+  engine::Rasterizer rasterizer(ctx());
+  engine::GBufferResolve resolve(ctx());
+  engine::GBuffer gbuffer = engine::createGBuffer(ctx(), width, height);
+  engine::Buffer visibility(ctx(), engine::Rasterizer::visibilityBytes(width, height),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
+  gi::FluxPass flux(ctx());
+  gi::VplImages vpls = gi::createVplImages(ctx(), width, height);
+  gi::MipPyramid mips(ctx());
+  gi::VsglAttributes attributes(ctx(), pyramidSize);
+  gi::VsglGenerator generator(ctx(), 256);
+  const gi::FluxSource unitImportance;  // radiance 1, no falloff
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, width, height});
+    resolve.record(cmd, gpuScene, visibility, view, gbuffer);
+    flux.record(cmd, gbuffer, importance, unitImportance, vpls);
+    attributes.record(cmd, vpls, gbuffer, importance, mips);
+    generator.record(cmd, attributes, importance, {256, 1.0f, VSGL_RULE_MODIFIED});
+  });
+
+  // Flux pass against its twin, as for light RSMs (tolerances of Rsm.FluxMatchesReference).
+  engine::GBufferData surface = engine::readbackGBuffer(ctx(), gbuffer);
+  auto ref = gi::rsmFluxReference(surface, importance, unitImportance);
+  auto diffuse = testing_gpu::readRgba32f(ctx(), vpls.diffuse, 0);
+  double solidAngle = 0.0, largest = 0.0;
+  for (const auto& t : ref) largest = std::max(largest, t.incident.g);
+  for (size_t i = 0; i < ref.size(); ++i) {
+    ASSERT_NEAR(diffuse[i].a, ref[i].incident.g, 1e-5 * ref[i].incident.g + 1e-6 * largest) << "pixel " << i;
+    for (int k = 0; k < 3; ++k)
+      ASSERT_NEAR(diffuse[i][k], ref[i].diffuseFlux[k], 1e-5 * ref[i].diffuseFlux[k] + 1e-6 * largest) << "pixel " << i;
+    solidAngle += diffuse[i].a;
+  }
+  // Every pixel sees the box, so the pixels' solid angles add up to the camera frustum's,
+  // 4 asin(sin a sin b) for half angles a, b; the midpoint rule is second order (~1e-4 here).
+  const double tanY = importance.tanHalfAngle, tanX = tanY * double(width) / height;
+  const double frustum = 4.0 * std::asin(std::sin(std::atan(tanX)) * std::sin(std::atan(tanY)));
+  std::printf("pixel solid angles %.6f sr, frustum %.6f sr\n", solidAngle, frustum);
+  EXPECT_NEAR(solidAngle, frustum, 1e-3 * frustum);
+
+  // Padding: zero everywhere outside the image in every level-0 attribute.
+  for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
+    auto base = testing_gpu::readRgba32f(ctx(), attributes.pyramid(a), 0);
+    for (uint32_t y = 0; y < pyramidSize; ++y)
+      for (uint32_t x = 0; x < pyramidSize; ++x)
+        if (x >= width || y >= height) {
+          ASSERT_EQ(base[size_t{y} * pyramidSize + x], glm::vec4(0.0f)) << "attribute " << a << " texel " << x << ", " << y;
+        }
+  }
+
+  // Importance VSGLs: kernels centred inside the image, finite, and sharing the total
+  // importance (modified FIS, within the 2 % of the energy test).
+  auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
+  double total = 0.0, importanceSum = 0.0;
+  for (uint32_t i = 0; i < 256; ++i) {
+    EXPECT_LT(v[i].kernel.x * pyramidSize, float(width)) << "VSGL " << i;
+    EXPECT_LT(v[i].kernel.y * pyramidSize, float(height)) << "VSGL " << i;
+    EXPECT_TRUE(std::isfinite(v[i].diffuse.axisSharpness.w) && std::isfinite(v[i].specular.axisSharpness.w));
+    total += v[i].diffuse.power.g;
+  }
+  for (const auto& t : ref) importanceSum += t.diffuseFlux.g;
+  EXPECT_NEAR(total, importanceSum, 0.02 * importanceSum);
+}
+
+}  // namespace
