@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,6 +34,7 @@ struct Options {
   uint32_t rsmSize = 128;
   uint32_t count = 256;      // N
   float kernelScale = 1.0f;  // K
+  uint32_t frames = 5;       // timed frames per rule (after one warm-up frame each)
   std::string device;
   bool validation = false;
   bool help = false;
@@ -45,6 +47,7 @@ const char* usage() {
          "  --out DIR      output directory for <scene>_kernels.png (default out)\n"
          "  --rsm N        RSM texels per side, a power of two in 16..2048 (default 128)\n"
          "  --count N      VSGLs per rule, 1..65536 (default 256)\n"
+         "  --frames N     timed frames per rule, alternating rules, 1..100 (default 5)\n"
          "  --k K          kernel scale K in [1, N]: kernels hold K/N of the PDF (default 1)\n"
          "  --device SEL   Vulkan device index or name substring (default: VSGL_DEVICE or auto)\n"
          "  --validation   enable the Khronos validation layer (any message fails the run)\n";
@@ -87,6 +90,8 @@ Options parseOptions(int argc, char** argv) {
       o.count = parseUint(arg, value(), 1, 65536);
     else if (arg == "--k")
       o.kernelScale = parseFloat(arg, kText = value());
+    else if (arg == "--frames")
+      o.frames = parseUint(arg, value(), 1, 100);
     else if (arg == "--device")
       o.device = value();
     else if (arg == "--validation")
@@ -187,6 +192,48 @@ struct RuleRun {
   std::vector<glm::dvec3> kernels;
 };
 
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
+}
+
+// GPU time of the final-step passes in the structure of [S3] Table 1 (lower row): additional
+// RSM (flux + attributes), mipmapping, filtered sampling; the rules alternate frame by frame so
+// that drift on a shared machine hits both alike. The RSM rasterisation is reported apart (the
+// paper's RSM rendering is not part of its Table 1 rows).
+void printTimings(engine::Context& ctx, const Options& o, const engine::SceneGpu& scene,
+                  engine::Rasterizer& rasterizer, engine::GBufferResolve& resolve,
+                  gi::ReflectiveShadowMap& rsm, const gi::MipPyramid& mips,
+                  gi::VsglAttributes& attributes, gi::VsglGenerator& generator,
+                  const gi::RsmView& view, const engine::Light& light) {
+  const char* passes[] = {"rsm raster", "rsm flux", "vsgl attributes", "attribute mipmapping",
+                          "filtered sampling"};
+  std::map<std::string, std::vector<double>> times[2];
+  engine::GpuProfiler profiler(ctx);
+  for (uint32_t frame = 0; frame < 2 * (o.frames + 1); ++frame) {
+    const uint32_t rule = frame % 2 ? VSGL_RULE_MODIFIED : VSGL_RULE_TOK15;
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      profiler.beginFrame(cmd);
+      rsm.record(cmd, scene, rasterizer, resolve, view, light, &profiler);
+      attributes.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler);
+      generator.record(cmd, attributes, view, {o.count, o.kernelScale, rule}, &profiler);
+    });
+    if (frame < 2) continue;  // warm-up: pipelines compile at their first dispatch
+    for (const auto& p : profiler.results()) times[rule][p.name].push_back(p.ms);
+  }
+  std::printf("GPU time per pass, median of %u frames (ms)      Tok15   modified\n", o.frames);
+  double total[2] = {0.0, 0.0};
+  for (const char* pass : passes) {
+    double t[2] = {median(times[0][pass]), median(times[1][pass])};
+    std::printf("  %-42s %8.3f %8.3f\n", pass, t[0], t[1]);
+    if (std::string(pass) != "rsm raster")
+      for (int r = 0; r < 2; ++r) total[r] += t[r];
+  }
+  std::printf("  %-42s %8.3f %8.3f  (modified / Tok15 = %.3f)\n",
+              "additional RSM + mipmapping + filtered sampling", total[0], total[1],
+              total[1] / total[0]);
+}
+
 int run(const Options& o) {
   if (o.help) {
     std::printf("%s", usage());
@@ -251,6 +298,8 @@ int run(const Options& o) {
     for (const glm::dvec3& k : runs[i].kernels) drawKernel(canvas, panel, k, o.rsmSize);
     for (const glm::dvec3& k : runs[i].kernels) drawCentre(canvas, panel, k, o.rsmSize);
   }
+  printTimings(ctx, o, gpuScene, rasterizer, resolve, rsm, mips, attributes, generator, view, light);
+
   const std::string path = (std::filesystem::path(o.outDir) / (o.scene + "_kernels.png")).string();
   engine::writePng(path, canvas.width, canvas.height, canvas.rgba);
   std::printf(
