@@ -204,4 +204,31 @@ TEST_F(VsglAttributesTest, ModifiedFisConservesTheRsmPower) {
   for (uint32_t i = 0; i < n; ++i) EXPECT_NEAR(v[i].diffuse.power.g, total / n, 1e-5 * total / n) << "VSGL " << i;
 }
 
+TEST_F(VsglAttributesTest, AnAllZeroRsmGivesFiniteVsglsWithoutPower) {
+  // The light sees nothing (vsgl-math.md section 12, case 1): every RSM image is zero, so the PDF
+  // is zero everywhere. Warping falls back to even splits, kernels take the top level, and
+  // every VSGL must come out finite with zero power, for both rules.
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    VkClearColorValue zero{};
+    VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    engine::computeToTransferBarrier(cmd);
+    for (engine::Image* image : {&rsm_->position(), &rsm_->diffuseFlux(), &rsm_->specularFlux()})
+      vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    engine::transferToComputeBarrier(cmd);
+  });
+  buildAttributes();
+  gi::VsglGenerator generator(ctx(), 64);
+  for (uint32_t rule : {VSGL_RULE_TOK15, VSGL_RULE_MODIFIED}) {
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, {64, 1.0f, rule}); });
+    auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
+    for (uint32_t i = 0; i < 64; ++i) {
+      const float* f = &v[i].diffuse.meanVariance.x;
+      for (size_t k = 0; k < sizeof(gpu::Vsgl) / sizeof(float); ++k)
+        ASSERT_TRUE(std::isfinite(f[k])) << "rule " << rule << " VSGL " << i << " float " << k;
+      EXPECT_EQ(v[i].diffuse.power, glm::vec4(0.0f));
+      EXPECT_EQ(v[i].specular.power, glm::vec4(0.0f));
+    }
+  }
+}
+
 }  // namespace

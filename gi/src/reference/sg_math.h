@@ -1,0 +1,108 @@
+// Spherical Gaussian (SG) math for VSGL shading (vsgl-math.md section 4), in double and naive on
+// purpose but with the stable forms of section 4.2: the oracle that the GLSL SG functions are
+// tested against.
+//
+// This work is based on:
+//   [T22] Tokuyoshi, "Accurate Diffuse Lighting from Spherical Gaussian Lights", 2022, Eq. 1
+//         (the hemispherical-integral interpolation, as implemented in [R]).
+//   [T24] Tokuyoshi et al., "Hierarchical Light Sampling with Accurate Spherical Gaussian
+//         Lighting", 2024, supplementary document Listings 4-7 (vMF hemisphere fraction, SG x
+//         clamped cosine, as implemented in [R]).
+//   [R]   github yusuketokuyoshi/VSGL (stable SG product, em1x, the VSGL radiance SG).
+//   [TS06] Tsai and Shih, "All-Frequency Precomputed Radiance Transfer using Spherical Radial
+//         Basis Functions and Clustered Tensor Approximation", SIGGRAPH 2006 (SG inner product).
+//
+// Conventions. G(w; xi, lambda) = exp(lambda (w . xi - 1)): unit peak, unit axis xi, sharpness
+// lambda >= 0. Every "per 2 pi" integral below is the integral divided by 2 pi, every "over pi"
+// one divided by pi, as in section 4.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "shared/vsgl.h"
+
+namespace gi {
+
+// (e^x - 1) / x, 1 at x = 0 (section 4.2). In double, expm1 is accurate near 0, so the
+// Higham/Kahan trick that [R] needs in fp32 is unnecessary here.
+double em1x(double x);
+
+// S(lambda) = integral of G over the sphere = 2 pi (1 - e^(-2 lambda)) / lambda, written as
+// 4 pi em1x(-2 lambda) (section 4.2) so that lambda -> 0 gives 4 pi instead of 0 / 0.
+double sgIntegral(double lambda);
+
+// G(omega; axis, lambda) as exp(-lambda / 2 |omega - axis|^2) (section 4.2): equal to
+// exp(lambda (omega . axis - 1)) for unit vectors, but 1 - cos is not rounded away near the peak.
+double sgEvaluate(glm::dvec3 omega, glm::dvec3 axis, double lambda);
+
+// exp(logAmplitude) G(w; axis, sharpness). The amplitude is kept as a logarithm because the
+// products below have amplitudes down to e^(-2^42).
+struct Sg {
+  glm::dvec3 axis{0.0, 0.0, 1.0};  // unit
+  double sharpness = 0.0;
+  double logAmplitude = 0.0;
+};
+
+double sgEvaluate(const Sg& sg, glm::dvec3 omega);
+
+// The product of two SGs is an SG (section 4.2): u = l1 xi1 + l2 xi2, sharpness |u|, axis
+// u / |u|, log amplitude la1 + la2 + (|u| - l1 - l2) in the cancellation-free form
+// -l1 l2 |xi1 - xi2|^2 / (|u| + l1 + l2) (0 when every sharpness is 0). |u| = 0 (opposite axes
+// with equal sharpness, or both sharpnesses 0) gives a.axis: any unit axis is exact there.
+Sg sgProduct(const Sg& a, const Sg& b);
+
+// Integral of the product over the sphere, e^(l_p) S(lambda_p) (section 4.2, [TS06]).
+double sgInnerProduct(const Sg& a, const Sg& b);
+
+// Integral of G(w; n, lambda) over the hemisphere w . n > 0, per 2 pi: em1x(-lambda) (section
+// 4.2, exact).
+double sgUpperHemisphericalIntegral(double lambda);
+// The same for G(w; -n, lambda): e^(-lambda) em1x(-lambda) (exact).
+double sgLowerHemisphericalIntegral(double lambda);
+// [T22] interpolation factor between the two for an axis with xi . n = cosine (section 4.2):
+// s = 1/2 + 1/2 erf(tau c) / erf(tau), tau = lambda sqrt((lambda/2 + A) / ((lambda + B) lambda
+// + C)); s = (1 + c) / 2 in the limit lambda -> 0. Exact at c = +-1.
+double sgHemisphericalLerpFactor(double lambda, double cosine);
+// Integral of G(w; xi, lambda) over w . n > 0 per 2 pi, with xi . n = cosine ([T22] fit,
+// section 4.2): H_low + s (H_up - H_low). Measured in fp64 against quadrature over
+// lambda in [0.1, 50]: |error| <= 0.5 % of H_up (worst 0.49 % at lambda = 7.7, c = 0.66; the
+// 0.4 % quoted in vsgl-math.md is slightly optimistic). GLSL test tolerances start from this.
+double sgHemisphericalIntegral(double lambda, double cosine);
+// The fraction of a vMF (normalised SG) that lies in w . n > 0 (section 4.2):
+// (e^(-lambda) + s (1 - e^(-lambda))) / (1 + e^(-lambda)).
+double vmfUpperHemisphereFraction(double lambda, double cosine);
+
+// Integrals of G(w; n, lambda) (w . n)^+ (upper, axis n) and of G(w; -n, lambda) (w . n)^+
+// (lower, axis -n), per 2 pi (section 4.3 option 2, [T24]):
+//   U = (1 - em1x(-lambda)) / lambda,  L = e^(-lambda) (em1x(-lambda) - e^(-lambda)) / lambda,
+// by their Taylor series for lambda <= 0.5 where the closed forms cancel.
+double clampedCosineUpperIntegral(double lambda);
+double clampedCosineLowerIntegral(double lambda);
+// D(lambda, c) = (1/pi) integral of G(w; xi, lambda) (w . n)^+ dw with xi . n = cosine ([T24],
+// section 4.3 option 2): 2 (L + (U - L) s), s the [T24] factor clamped to [0, 1]. The factor 2
+// turns the per-2 pi U and L into "over pi", so D = 1 for lambda = 0 (any c): a white furnace,
+// since (1/pi) integral of (w . n)^+ is 1. Fit error in fp64 (tests/unit/test_sg_math.cpp):
+// <= 1.6e-3 of the front-facing value 2 U for every lambda and c; relative <= 2.5e-5 for
+// lambda <= 0.5 and <= 6.5e-3 for c >= 0; unbounded relative error for back-facing lobes (the
+// fit interpolates between L and U, so its error scales with U, not with D).
+double sgClampedCosineIntegralOverPi(double lambda, double cosine);
+
+// Incoming radiance at a receiver from one VSGL lobe (section 4.1; the record of section 3.4):
+//   L_i(w) = scale G(w; -xi, lambda) G(w; l / d, lambda_x) = scale exp(sg.logAmplitude)
+//            G(w; sg.axis, sg.sharpness),
+// with l = mu - x, d = |l|, lambda_x = d^2 / v', scale E = Phi / (2 pi v' S(lambda)) and the
+// clamped variance v' = max(v, d^2 / 2^41, 2^-126). Incident directions w point FROM the
+// receiver TO the light, and xi is the direction light leaves the VSGL, hence -xi.
+struct VsglIncomingRadiance {
+  Sg sg;
+  glm::dvec3 scale{0.0};  // E (RGB)
+};
+VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 receiver);
+
+// Outgoing diffuse radiance at a receiver with unit normal n and albedo rho from one VSGL lobe
+// (section 4.3): rho E e^(l_p) D(lambda_p, xi_p . n), i.e. rho / pi times the integral of
+// L_i (w . n)^+. No visibility.
+glm::dvec3 vsglDiffuseRadiance(const gpu::VsglLobe& lobe, glm::dvec3 receiver, glm::dvec3 normal,
+                               glm::dvec3 albedo);
+
+}  // namespace gi
