@@ -7,6 +7,8 @@
 //                         flux-proportional PDF is w_d + w_s, the BRSM pass overwrites it)
 // Mips are exact box means, so every ratio of two channels read with the same kernel is an
 // exact kernel-weighted mean. Texels without power, or with any non-finite input, are all zero.
+// Storage is fp32 only; fp16 is refused by design: w |y|^2 reaches ~1e11 for the intensities and
+// scene scales of Tokuyoshi's demo (vsgl-math.md section 12, case 5), far past fp16's 65504.
 #ifndef SHADERS_SHARED_VSGL_ATTRIBUTES_H
 #define SHADERS_SHARED_VSGL_ATTRIBUTES_H
 
