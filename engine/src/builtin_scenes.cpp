@@ -66,15 +66,15 @@ class ProceduralScene {
     const glm::vec3 hz = 0.5f * size.z * az;
     const glm::vec3 up = size.y * ay;
     const glm::vec3 c = baseCentre;
-    addRect(c + hx + hz, -2.0f * hz, up, material, maxCell);  // +X side
-    addRect(c - hx - hz, 2.0f * hz, up, material, maxCell);   // -X side
-    addRect(c - hx + hz, 2.0f * hx, up, material, maxCell);   // +Z side
-    addRect(c + hx - hz, -2.0f * hx, up, material, maxCell);  // -Z side
+    addRect(c + hx + hz, -2.0f * hz, up, material, maxCell);              // +X side
+    addRect(c - hx - hz, 2.0f * hz, up, material, maxCell);               // -X side
+    addRect(c - hx + hz, 2.0f * hx, up, material, maxCell);               // +Z side
+    addRect(c + hx - hz, -2.0f * hx, up, material, maxCell);              // -Z side
     addRect(c + up - hx + hz, 2.0f * hx, -2.0f * hz, material, maxCell);  // top
   }
 
-  void addSpotLight(const std::string& name, glm::vec3 position, glm::vec3 target,
-                    float intensity, float innerCone, float outerCone) {
+  void addSpotLight(const std::string& name, glm::vec3 position, glm::vec3 target, float intensity,
+                    float innerCone, float outerCone) {
     Light light;
     light.name = name;
     light.type = LightType::Spot;
@@ -117,10 +117,10 @@ class ProceduralScene {
 // Cornell-style box, widened for 16:9 images: x in [-1.6, 1.6], y in [0, 2], z in [-1, 1], open
 // towards +Z.
 Scene makeCornell() {
-  constexpr float kHalfWidth = 1.6f;   // half the room width (x), metres
-  constexpr float kHalf = 1.0f;        // half the room depth (z), metres
+  constexpr float kHalfWidth = 1.6f;  // half the room width (x), metres
+  constexpr float kHalf = 1.0f;       // half the room depth (z), metres
   constexpr float kHeight = 2.0f;
-  constexpr float kWallCell = 0.2f;    // 10 x 10 cells per wall
+  constexpr float kWallCell = 0.2f;  // 10 x 10 cells per wall
   constexpr float kBoxCell = 0.15f;
   // Albedos of the classic Cornell box measurements, roughly, in linear RGB.
   constexpr glm::vec3 kWhite(0.73f, 0.73f, 0.73f);
@@ -157,8 +157,8 @@ Scene makeCornell() {
   s.addRect({-kHalfWidth, 0.0f, -kHalf}, {w, 0.0f, 0.0f}, {0.0f, kHeight, 0.0f}, white, kWallCell);
   s.addRect({-kHalfWidth, 0.0f, kHalf}, {0.0f, 0.0f, -d}, {0.0f, kHeight, 0.0f}, red, kWallCell);
   s.addRect({kHalfWidth, 0.0f, -kHalf}, {0.0f, 0.0f, d}, {0.0f, kHeight, 0.0f}, green, kWallCell);
-  s.addBox({-0.35f, 0.0f, -0.35f}, {0.6f, 1.2f, 0.6f}, 0.3f, white, kBoxCell);   // tall
-  s.addBox({0.4f, 0.0f, 0.3f}, {0.6f, 0.6f, 0.6f}, -0.3f, white, kBoxCell);      // short
+  s.addBox({-0.35f, 0.0f, -0.35f}, {0.6f, 1.2f, 0.6f}, 0.3f, white, kBoxCell);  // tall
+  s.addBox({0.4f, 0.0f, 0.3f}, {0.6f, 0.6f, 0.6f}, -0.3f, white, kBoxCell);     // short
 
   s.addSpotLight("ceiling spot", kSpotPosition, kSpotTarget, kSpotIntensity, kSpotInner,
                  kSpotOuter);
@@ -293,7 +293,9 @@ Scene makeChecker() {
 
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "atrium", "checker"}; }
+std::vector<std::string> builtinSceneNames() {
+  return {"cornell", "atrium", "checker"};
+}
 
 Scene makeBuiltinScene(const std::string& name) {
   if (name == "cornell") return makeCornell();

@@ -37,7 +37,8 @@ void transferToComputeBarrier(VkCommandBuffer cmd) {
 }
 
 void computeToTransferBarrier(VkCommandBuffer cmd) {
-  memoryBarrier(cmd, kComputeTransfer, VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+  memoryBarrier(cmd, kComputeTransfer,
+                VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
                 VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
 }

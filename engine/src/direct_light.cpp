@@ -21,11 +21,13 @@ gpu::ShadowView perspectiveView(const glm::vec3& eye, const glm::vec3& forward, 
   return {proj * view, glm::vec4(texelPerMetre, 0.0f, 0.0f, 0.0f)};
 }
 
-void appendCube(LightSetup& setup, const glm::vec3& eye, const Bounds& bounds, uint32_t resolution) {
+void appendCube(LightSetup& setup, const glm::vec3& eye, const Bounds& bounds,
+                uint32_t resolution) {
   const glm::vec3 faces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   // 90 degrees plus one texel so that PCF taps at a face edge stay inside the face.
   float halfAngle = std::atan(1.0f + 2.0f / static_cast<float>(resolution));
-  for (const glm::vec3& f : faces) setup.views.push_back(perspectiveView(eye, f, halfAngle, bounds, resolution));
+  for (const glm::vec3& f : faces)
+    setup.views.push_back(perspectiveView(eye, f, halfAngle, bounds, resolution));
 }
 
 }  // namespace
@@ -41,16 +43,21 @@ LightSetup buildLightSetup(const Scene& scene, const DirectLightSettings& settin
     g.radiance = glm::vec4(light.color * light.intensity, light.range);
     glm::vec2 falloff = spotFalloff(light);
     g.spot = glm::vec4(falloff, 0.0f, 0.0f);
-    g.info = glm::uvec4(static_cast<uint32_t>(light.type), static_cast<uint32_t>(setup.views.size()), 0u, 0u);
+    g.info = glm::uvec4(static_cast<uint32_t>(light.type),
+                        static_cast<uint32_t>(setup.views.size()), 0u, 0u);
     if (settings.shadows) {
       size_t first = setup.views.size();
       if (light.type == LightType::Directional) {
         EnclosingOrtho o = enclosingOrthographic(bounds, glm::vec3(g.direction));
-        setup.views.push_back({o.proj * o.view, glm::vec4(0.0f, 2.0f * o.halfExtent / static_cast<float>(res), 0.0f, 0.0f)});
+        setup.views.push_back(
+            {o.proj * o.view,
+             glm::vec4(0.0f, 2.0f * o.halfExtent / static_cast<float>(res), 0.0f, 0.0f)});
       } else if (light.type == LightType::Spot && light.outerConeAngle <= kMaxSpotViewHalfAngle) {
         // One texel of margin beyond the cone keeps PCF taps at the cone edge inside the map.
-        float half = std::min(light.outerConeAngle + 2.0f / static_cast<float>(res), kMaxSpotViewHalfAngle + 0.1f);
-        setup.views.push_back(perspectiveView(light.position, glm::vec3(g.direction), half, bounds, res));
+        float half = std::min(light.outerConeAngle + 2.0f / static_cast<float>(res),
+                              kMaxSpotViewHalfAngle + 0.1f);
+        setup.views.push_back(
+            perspectiveView(light.position, glm::vec3(g.direction), half, bounds, res));
       } else {
         appendCube(setup, light.position, bounds, res);
       }
@@ -61,7 +68,8 @@ LightSetup buildLightSetup(const Scene& scene, const DirectLightSettings& settin
   return setup;
 }
 
-DirectLighting::DirectLighting(Context& ctx, const Scene& scene, const DirectLightSettings& settings)
+DirectLighting::DirectLighting(Context& ctx, const Scene& scene,
+                               const DirectLightSettings& settings)
     : settings_(settings),
       setup_(buildLightSetup(scene, settings)),
       program_(ctx, "direct_light", kDirectLightSpv,
@@ -88,7 +96,8 @@ DirectLighting::DirectLighting(Context& ctx, const Scene& scene, const DirectLig
                         DIRECT_MAX_LIGHTS * sizeof(gpu::GpuLight));
   views_ = makeUniform(setup_.views.data(), setup_.views.size() * sizeof(gpu::ShadowView),
                        DIRECT_MAX_SHADOW_VIEWS * sizeof(gpu::ShadowView));
-  VkDeviceSize mapBytes = Rasterizer::visibilityBytes(settings.shadowResolution, settings.shadowResolution);
+  VkDeviceSize mapBytes =
+      Rasterizer::visibilityBytes(settings.shadowResolution, settings.shadowResolution);
   shadowMaps_ = Buffer(ctx, std::max<VkDeviceSize>(mapBytes * setup_.views.size(), 16),
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
 }
@@ -103,14 +112,15 @@ void DirectLighting::record(VkCommandBuffer cmd, const SceneGpu& scene, Rasteriz
     rasterizer.record(cmd, scene, setup_.views[i].viewProj, {&shadowMaps_, i * mapBytes, res, res});
   }
   ProfileScope scope(profiler, cmd, "direct light");
-  gpu::DirectLightPush push{view.invViewProj, {g.width, g.height},
-                            static_cast<uint32_t>(setup_.lights.size()), res};
+  gpu::DirectLightPush push{
+      view.invViewProj, {g.width, g.height}, static_cast<uint32_t>(setup_.lights.size()), res};
   program_.dispatch(cmd,
-                    {Binding::uniform(lights_), Binding::uniform(views_), Binding::storage(shadowMaps_),
-                     Binding::storageImage(g.depth), Binding::storageImage(g.normal),
-                     Binding::storageImage(g.diffuse), Binding::storageImage(g.specular),
-                     Binding::storageImage(radiance)},
-                    push, groupCount(g.width, DIRECT_GROUP_X), groupCount(g.height, DIRECT_GROUP_Y));
+                    {Binding::uniform(lights_), Binding::uniform(views_),
+                     Binding::storage(shadowMaps_), Binding::storageImage(g.depth),
+                     Binding::storageImage(g.normal), Binding::storageImage(g.diffuse),
+                     Binding::storageImage(g.specular), Binding::storageImage(radiance)},
+                    push, groupCount(g.width, DIRECT_GROUP_X),
+                    groupCount(g.height, DIRECT_GROUP_Y));
   computeBarrier(cmd);
 }
 

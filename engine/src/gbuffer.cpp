@@ -55,7 +55,8 @@ void GBufferResolve::record(VkCommandBuffer cmd, const SceneGpu& scene, const Bu
                      Binding::sampled(scene.dataTextures, scene.sampler.handle()),
                      Binding::storageImage(g.depth), Binding::storageImage(g.normal),
                      Binding::storageImage(g.diffuse), Binding::storageImage(g.specular)},
-                    push, groupCount(g.width, GBUFFER_GROUP_X), groupCount(g.height, GBUFFER_GROUP_Y));
+                    push, groupCount(g.width, GBUFFER_GROUP_X),
+                    groupCount(g.height, GBUFFER_GROUP_Y));
   computeBarrier(cmd);
 }
 

@@ -4,9 +4,8 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <string>
-
 #include <glm/gtc/packing.hpp>
+#include <string>
 
 #include "engine/error.h"
 #include "shared/raster.h"
@@ -127,7 +126,7 @@ T loadTexel(std::span<const std::byte> bytes, size_t index) {
 }
 
 // Vulkan's SNORM decode: the most negative code also maps to -1.
-double snormToDouble(int16_t v) {
+double decodeSnorm16(int16_t v) {
   return std::max(v / 32767.0, -1.0);
 }
 
@@ -185,8 +184,8 @@ GBufferData decodeGBuffer(uint32_t width, uint32_t height, std::span<const std::
     s.metallic = f.w;
     // The resolve stores a zero normal for background texels; decoding it would invent +Z.
     if (!s.background())
-      s.normal = octDecode(glm::dvec2(snormToDouble(loadTexel<int16_t>(normal, 2 * i)),
-                                      snormToDouble(loadTexel<int16_t>(normal, 2 * i + 1))));
+      s.normal = octDecode(glm::dvec2(decodeSnorm16(loadTexel<int16_t>(normal, 2 * i)),
+                                      decodeSnorm16(loadTexel<int16_t>(normal, 2 * i + 1))));
   }
   return g;
 }

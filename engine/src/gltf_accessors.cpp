@@ -102,15 +102,15 @@ AccessorView ModelReader::viewAccessor(int accessorIndex, const std::string& whe
   const std::string what = where + " (accessor " + std::to_string(accessorIndex) + ")";
   if (accessor.sparse.isSparse) fail(what + ": sparse accessors are not supported");
   if (accessor.type != expectedType) {
-    fail(what + ": expected type " + typeName(expectedType) + ", got " +
-         typeName(accessor.type));
+    fail(what + ": expected type " + typeName(expectedType) + ", got " + typeName(accessor.type));
   }
   if (std::find(allowedComponentTypes.begin(), allowedComponentTypes.end(),
                 accessor.componentType) == allowedComponentTypes.end()) {
     fail(what + ": unsupported componentType " + std::to_string(accessor.componentType));
   }
   if (accessor.bufferView < 0) fail(what + ": accessors without a bufferView are not supported");
-  const tinygltf::BufferView& view = at(model_.bufferViews, accessor.bufferView, "bufferView", what);
+  const tinygltf::BufferView& view =
+      at(model_.bufferViews, accessor.bufferView, "bufferView", what);
   const auto& data = at(model_.buffers, view.buffer, "buffer", what).data;
   if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
     fail(what + ": bufferView " + std::to_string(accessor.bufferView) +
@@ -123,10 +123,10 @@ AccessorView ModelReader::viewAccessor(int accessorIndex, const std::string& whe
   // The last element must end inside the view: offset + stride * (count - 1) + elementSize,
   // compared by division so that a huge count cannot overflow.
   if (accessor.count > 0) {
-    const bool fits = accessor.byteOffset <= view.byteLength &&
-                      elementSize <= view.byteLength - accessor.byteOffset &&
-                      accessor.count - 1 <=
-                          (view.byteLength - accessor.byteOffset - elementSize) / stride;
+    const bool fits =
+        accessor.byteOffset <= view.byteLength &&
+        elementSize <= view.byteLength - accessor.byteOffset &&
+        accessor.count - 1 <= (view.byteLength - accessor.byteOffset - elementSize) / stride;
     if (!fits) {
       fail(what + ": " + std::to_string(accessor.count) + " elements at byteOffset " +
            std::to_string(accessor.byteOffset) + " do not fit in bufferView " +

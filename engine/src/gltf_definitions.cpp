@@ -90,8 +90,9 @@ void SceneBuilder::convertLights() {
       const double inner = in.spot.innerConeAngle;
       const double outer = in.spot.outerConeAngle;
       if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2)) {
-        fail(where + ": spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= "
-                     "pi/2 (got innerConeAngle " +
+        fail(where +
+             ": spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= "
+             "pi/2 (got innerConeAngle " +
              std::to_string(inner) + ", outerConeAngle " + std::to_string(outer) + ")");
       }
       out.innerConeAngle = static_cast<float>(inner);
@@ -124,8 +125,7 @@ void SceneBuilder::convertCameras() {
       out.zfar = static_cast<float>(p.zfar);
     } else if (in.type == "orthographic") {
       const tinygltf::OrthographicCamera& o = in.orthographic;
-      if (!(o.xmag != 0.0 && o.ymag != 0.0) || !std::isfinite(o.xmag) ||
-          !std::isfinite(o.ymag)) {
+      if (!(o.xmag != 0.0 && o.ymag != 0.0) || !std::isfinite(o.xmag) || !std::isfinite(o.ymag)) {
         fail(where + ": xmag and ymag must be non-zero");
       }
       if (!(o.znear >= 0.0) || !(o.zfar > o.znear) || !std::isfinite(o.zfar)) {

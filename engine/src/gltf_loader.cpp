@@ -8,6 +8,7 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <glm/gtc/quaternion.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -15,8 +16,6 @@
 #include <system_error>
 #include <utility>
 #include <vector>
-
-#include <glm/gtc/quaternion.hpp>
 
 #include "engine/error.h"
 #include "engine/gltf.h"
@@ -67,17 +66,16 @@ struct ImageDecoder {
   std::string error;  // first failure, reported instead of tinygltf's wording
 };
 
-bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string*,
-                 int, int, const unsigned char* bytes, int size, void* userData) {
+bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string*, int,
+                 int, const unsigned char* bytes, int size, void* userData) {
   auto& decoder = *static_cast<ImageDecoder*>(userData);
   const std::string label = "image " + std::to_string(imageIndex);
   try {
     if (imageIndex < 0) throw Error(label + ": invalid image index");
-    const std::string name =
-        image->uri.empty()
-            ? std::filesystem::path(decoder.gltfPath).filename().string() + "#image" +
-                  std::to_string(imageIndex)
-            : image->uri;
+    const std::string name = image->uri.empty()
+                                 ? std::filesystem::path(decoder.gltfPath).filename().string() +
+                                       "#image" + std::to_string(imageIndex)
+                                 : image->uri;
     std::span<const uint8_t> encoded;
     if (image->bufferView >= 0) {
       // tinygltf points into the buffer without checking that the view fits in it.
@@ -118,8 +116,8 @@ namespace gltf_detail {
 
 void SceneBuilder::build() {
   for (const std::string& extension : model_.extensionsRequired) {
-    if (std::find(std::begin(kUnderstoodExtensions), std::end(kUnderstoodExtensions),
-                  extension) == std::end(kUnderstoodExtensions)) {
+    if (std::find(std::begin(kUnderstoodExtensions), std::end(kUnderstoodExtensions), extension) ==
+        std::end(kUnderstoodExtensions)) {
       fail("requires unsupported extension '" + extension + "'");
     }
   }
@@ -231,8 +229,8 @@ void SceneBuilder::addCamera(int cameraIndex, const glm::dmat4& world, const std
                    : std::nullopt;
   if (!z || !y) fail(where + ": camera node has a degenerate transform");
   const glm::dvec3 x = glm::cross(*y, *z);
-  camera.cameraToWorld = glm::mat4(glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(*y, 0.0),
-                                              glm::dvec4(*z, 0.0), world[3]));
+  camera.cameraToWorld =
+      glm::mat4(glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(*y, 0.0), glm::dvec4(*z, 0.0), world[3]));
   scene_.cameras.push_back(std::move(camera));
 }
 

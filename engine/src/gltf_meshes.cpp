@@ -28,8 +28,7 @@ std::vector<uint32_t> assembleTriangles(int mode, const std::vector<uint32_t>& c
     if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
       // glTF 2.0 spec 3.7.2.1: odd triangles swap two corners to keep the winding.
       const size_t odd = i % 2;
-      triangles.insert(triangles.end(),
-                       {corners[i], corners[i + 1 + odd], corners[i + 2 - odd]});
+      triangles.insert(triangles.end(), {corners[i], corners[i + 1 + odd], corners[i + 2 - odd]});
     } else {
       triangles.insert(triangles.end(), {corners[i + 1], corners[i + 2], corners[0]});
     }
@@ -80,8 +79,8 @@ void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm:
   const size_t vertexCount = positions.count;
   std::optional<AccessorView> normals;
   if (const int a = attribute("NORMAL"); a >= 0) {
-    normals = viewAccessor(a, where + " NORMAL", TINYGLTF_TYPE_VEC3,
-                           {TINYGLTF_COMPONENT_TYPE_FLOAT});
+    normals =
+        viewAccessor(a, where + " NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
   }
   std::optional<AccessorView> uvs;
   if (const int a = attribute("TEXCOORD_0"); a >= 0) {
@@ -101,16 +100,14 @@ void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm:
   if (primitive.indices >= 0) {
     const AccessorView indices =
         viewAccessor(primitive.indices, where + " indices", TINYGLTF_TYPE_SCALAR,
-                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
     corners.resize(indices.count);
     for (size_t i = 0; i < indices.count; ++i) {
       corners[i] = readIndex(indices, i);
       if (corners[i] >= vertexCount) {
-        fail(where + ": index " + std::to_string(corners[i]) + " at position " +
-             std::to_string(i) + " is out of range (" + std::to_string(vertexCount) +
-             " vertices)");
+        fail(where + ": index " + std::to_string(corners[i]) + " at position " + std::to_string(i) +
+             " is out of range (" + std::to_string(vertexCount) + " vertices)");
       }
     }
   } else {
@@ -143,7 +140,8 @@ void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm:
   }
   // A mirroring transform turns counter-clockwise triangles clockwise: swap two corners.
   if (glm::determinant(glm::dmat3(world)) < 0.0) {
-    for (size_t t = 0; t + 2 < triangles.size(); t += 3) std::swap(triangles[t + 1], triangles[t + 2]);
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+      std::swap(triangles[t + 1], triangles[t + 2]);
   }
 
   // Face normals (unnormalised: length = twice the area) of the final, world-space winding.

@@ -12,14 +12,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
 #include <system_error>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "engine/error.h"
 #include "engine/gltf.h"
@@ -99,9 +98,9 @@ class BufferBuilder {
 
   void writeInto(json& gltf) const {
     if (accessors_.empty()) return;
-    gltf["buffers"] = json::array(
-        {{{"byteLength", data_.size()},
-          {"uri", "data:application/octet-stream;base64," + base64(data_)}}});
+    gltf["buffers"] =
+        json::array({{{"byteLength", data_.size()},
+                      {"uri", "data:application/octet-stream;base64," + base64(data_)}}});
     gltf["bufferViews"] = views_;
     gltf["accessors"] = accessors_;
   }
@@ -123,7 +122,8 @@ json matrixJson(const glm::mat4& m) {
 // A node frame whose -Z is `direction` (KHR_lights_punctual lights shine down -Z).
 glm::mat4 lightFrame(const Light& light) {
   const glm::vec3 z = -glm::normalize(light.direction);
-  const glm::vec3 up = std::abs(z.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 up =
+      std::abs(z.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 x = glm::normalize(glm::cross(up, z));
   const glm::vec3 y = glm::cross(z, x);
   return glm::mat4(glm::vec4(x, 0.0f), glm::vec4(y, 0.0f), glm::vec4(z, 0.0f),
@@ -271,13 +271,12 @@ class GltfBuilder {
       }
       // glTF requires min/max on POSITION accessors.
       const auto bounds = std::make_pair(tidyArray({&lo.x, 3}), tidyArray({&hi.x, 3}));
-      json attributes = {
-          {"POSITION", buffer_.addAccessor(std::span<const glm::vec3>(positions), kFloat, "VEC3",
-                                           kArrayBuffer, bounds)},
-          {"NORMAL", buffer_.addAccessor(std::span<const glm::vec3>(normals), kFloat, "VEC3",
-                                         kArrayBuffer)},
-          {"TEXCOORD_0", buffer_.addAccessor(std::span<const glm::vec2>(uvs), kFloat, "VEC2",
-                                             kArrayBuffer)}};
+      json attributes = {{"POSITION", buffer_.addAccessor(std::span<const glm::vec3>(positions),
+                                                          kFloat, "VEC3", kArrayBuffer, bounds)},
+                         {"NORMAL", buffer_.addAccessor(std::span<const glm::vec3>(normals), kFloat,
+                                                        "VEC3", kArrayBuffer)},
+                         {"TEXCOORD_0", buffer_.addAccessor(std::span<const glm::vec2>(uvs), kFloat,
+                                                            "VEC2", kArrayBuffer)}};
       const int indexAccessor = buffer_.addAccessor(std::span<const uint32_t>(indices),
                                                     kUnsignedInt, "SCALAR", kElementArrayBuffer);
       primitives.push_back({{"attributes", std::move(attributes)},

@@ -54,7 +54,8 @@ Image::Image(Context& ctx, const ImageDesc& desc) : device_(ctx.device()), desc_
 
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image_;
-  viewInfo.viewType = (desc.arrayView || desc.layers > 1) ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+  viewInfo.viewType =
+      (desc.arrayView || desc.layers > 1) ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   viewInfo.format = desc.format;
   viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, desc.mips, 0, desc.layers};
   VK_CHECK(vkCreateImageView(device_, &viewInfo, nullptr, &view_));
@@ -68,9 +69,13 @@ Image::Image(Context& ctx, const ImageDesc& desc) : device_(ctx.device()), desc_
   }
 }
 
-Image::~Image() { release(); }
+Image::~Image() {
+  release();
+}
 
-Image::Image(Image&& other) noexcept { *this = std::move(other); }
+Image::Image(Image&& other) noexcept {
+  *this = std::move(other);
+}
 
 Image& Image::operator=(Image&& other) noexcept {
   if (this != &other) {
@@ -113,8 +118,9 @@ void Image::upload(Context& ctx, const void* data, size_t bytes) {
       offset += size_t{w} * h * texel;
     }
   }
-  if (offset != bytes) throw Error("Image::upload: expected " + std::to_string(offset) +
-                                   " bytes, got " + std::to_string(bytes));
+  if (offset != bytes)
+    throw Error("Image::upload: expected " + std::to_string(offset) + " bytes, got " +
+                std::to_string(bytes));
   Buffer staging(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
   std::memcpy(staging.mapped(), data, bytes);
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -126,7 +132,8 @@ void Image::upload(Context& ctx, const void* data, size_t bytes) {
 }
 
 std::vector<std::byte> Image::readback(Context& ctx, uint32_t level) {
-  const uint32_t width = std::max(1u, desc_.width >> level), height = std::max(1u, desc_.height >> level);
+  const uint32_t width = std::max(1u, desc_.width >> level),
+                 height = std::max(1u, desc_.height >> level);
   const size_t layerBytes = size_t{width} * height * texelBytes(desc_.format);
   Buffer staging(ctx, layerBytes * desc_.layers, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                  MemoryUsage::Readback);
@@ -162,7 +169,9 @@ Sampler::~Sampler() {
   if (sampler_) vkDestroySampler(device_, sampler_, nullptr);
 }
 
-Sampler::Sampler(Sampler&& other) noexcept { *this = std::move(other); }
+Sampler::Sampler(Sampler&& other) noexcept {
+  *this = std::move(other);
+}
 
 Sampler& Sampler::operator=(Sampler&& other) noexcept {
   if (this != &other) {

@@ -5,7 +5,8 @@
 namespace engine {
 
 GpuProfiler::GpuProfiler(Context& ctx, uint32_t maxScopes)
-    : ctx_(ctx), maxScopes_(maxScopes),
+    : ctx_(ctx),
+      maxScopes_(maxScopes),
       nsPerTick_(static_cast<double>(ctx.properties().limits.timestampPeriod)) {
   VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   info.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -13,7 +14,9 @@ GpuProfiler::GpuProfiler(Context& ctx, uint32_t maxScopes)
   VK_CHECK(vkCreateQueryPool(ctx.device(), &info, nullptr, &pool_));
 }
 
-GpuProfiler::~GpuProfiler() { vkDestroyQueryPool(ctx_.device(), pool_, nullptr); }
+GpuProfiler::~GpuProfiler() {
+  vkDestroyQueryPool(ctx_.device(), pool_, nullptr);
+}
 
 void GpuProfiler::beginFrame(VkCommandBuffer cmd) {
   names_.clear();
@@ -21,8 +24,8 @@ void GpuProfiler::beginFrame(VkCommandBuffer cmd) {
 }
 
 uint32_t GpuProfiler::begin(VkCommandBuffer cmd, const std::string& name) {
-  if (names_.size() >= maxScopes_) throw Error("GpuProfiler: more than " +
-                                               std::to_string(maxScopes_) + " scopes in a frame");
+  if (names_.size() >= maxScopes_)
+    throw Error("GpuProfiler: more than " + std::to_string(maxScopes_) + " scopes in a frame");
   auto scope = static_cast<uint32_t>(names_.size());
   names_.push_back(name);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope);

@@ -6,7 +6,9 @@ namespace engine {
 
 ComputeProgram::ComputeProgram(Context& ctx, std::string name, std::span<const uint32_t> spirv,
                                std::vector<VkDescriptorType> bindings, uint32_t pushConstantBytes)
-    : ctx_(&ctx), name_(std::move(name)), bindingTypes_(std::move(bindings)),
+    : ctx_(&ctx),
+      name_(std::move(name)),
+      bindingTypes_(std::move(bindings)),
       pushBytes_(pushConstantBytes) {
   VkDevice device = ctx.device();
   std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
@@ -44,9 +46,13 @@ ComputeProgram::ComputeProgram(Context& ctx, std::string name, std::span<const u
   VK_CHECK(result);
 }
 
-ComputeProgram::~ComputeProgram() { release(); }
+ComputeProgram::~ComputeProgram() {
+  release();
+}
 
-ComputeProgram::ComputeProgram(ComputeProgram&& other) noexcept { *this = std::move(other); }
+ComputeProgram::ComputeProgram(ComputeProgram&& other) noexcept {
+  *this = std::move(other);
+}
 
 ComputeProgram& ComputeProgram::operator=(ComputeProgram&& other) noexcept {
   if (this != &other) {

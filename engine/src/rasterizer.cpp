@@ -37,7 +37,8 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::m
   if (target.width == 0 || target.height == 0 || target.width > RASTER_MAX_VIEWPORT ||
       target.height > RASTER_MAX_VIEWPORT)
     throw Error("rasterizer: viewport " + std::to_string(target.width) + "x" +
-                std::to_string(target.height) + " outside 1.." + std::to_string(RASTER_MAX_VIEWPORT));
+                std::to_string(target.height) + " outside 1.." +
+                std::to_string(RASTER_MAX_VIEWPORT));
   reserve(scene.triangleCount);
   VkDeviceSize visBytes = visibilityBytes(target.width, target.height);
 
@@ -46,7 +47,8 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::m
     gpu::RasterCounters zero{0, 0, 1, 1, 0, 0, 0, 0};
     updateBuffer(cmd, counters_, &zero, sizeof(zero));
     fillBuffer(cmd, *target.visibility, 0xFFFFFFFFu, target.offset, visBytes);
-    gpu::RasterSetupPush push{viewProj, {target.width, target.height}, scene.triangleCount, capacity_};
+    gpu::RasterSetupPush push{
+        viewProj, {target.width, target.height}, scene.triangleCount, capacity_};
     setup_.dispatch(cmd,
                     {Binding::storage(scene.vertices), Binding::storage(scene.indices),
                      Binding::storage(triangles_), Binding::storage(counters_)},

@@ -1,11 +1,11 @@
 #include "engine/scene_gpu.h"
 
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include "engine/tonemap.h"
 #include "shared/scene_data.h"
@@ -29,7 +29,8 @@ std::vector<float> resampleLinear(const Texture& t, bool srgb, int size) {
   }
   src.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, linear.data());
   if (t.width == size && t.height == size) return linear;
-  OIIO::ImageBuf dst = OIIO::ImageBufAlgo::resize(src, "", 0.0f, OIIO::ROI(0, size, 0, size, 0, 1, 0, 4));
+  OIIO::ImageBuf dst =
+      OIIO::ImageBufAlgo::resize(src, "", 0.0f, OIIO::ROI(0, size, 0, size, 0, 1, 0, 4));
   if (dst.has_error()) throw Error(t.name + ": cannot resample texture: " + dst.geterror());
   std::vector<float> out(static_cast<size_t>(size) * size * 4);
   dst.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, out.data());
@@ -50,7 +51,9 @@ void appendMipChain(std::vector<float> level, int size, bool srgb, std::vector<u
     for (int y = 0; y < half; ++y)
       for (int x = 0; x < half; ++x)
         for (int c = 0; c < 4; ++c) {
-          auto at = [&](int xx, int yy) { return level[(static_cast<size_t>(yy) * size + xx) * 4 + c]; };
+          auto at = [&](int xx, int yy) {
+            return level[(static_cast<size_t>(yy) * size + xx) * 4 + c];
+          };
           next[(static_cast<size_t>(y) * half + x) * 4 + c] =
               0.25f * (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) +
                        at(2 * x + 1, 2 * y + 1));
@@ -66,9 +69,11 @@ Image makeTextureArray(Context& ctx, const Scene& scene, const std::vector<int>&
   std::vector<uint8_t> texels;
   if (textures.empty()) {
     // Vulkan needs a layer to bind; materials never sample it (their layer index is -1).
-    appendMipChain(std::vector<float>(static_cast<size_t>(size) * size * 4, 1.0f), size, false, texels);
+    appendMipChain(std::vector<float>(static_cast<size_t>(size) * size * 4, 1.0f), size, false,
+                   texels);
   }
-  for (int index : textures) appendMipChain(resampleLinear(scene.textures[index], srgb, size), size, srgb, texels);
+  for (int index : textures)
+    appendMipChain(resampleLinear(scene.textures[index], srgb, size), size, srgb, texels);
   ImageDesc desc;
   desc.width = desc.height = static_cast<uint32_t>(size);
   desc.layers = static_cast<uint32_t>(std::max<size_t>(1, textures.size()));
@@ -125,7 +130,8 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
       if (t >= 0) largest = std::max({largest, scene.textures[t].width, scene.textures[t].height});
     materials.push_back(g);
   }
-  int size = std::min(kMaxTextureSize, static_cast<int>(std::bit_ceil(static_cast<unsigned>(largest))));
+  int size =
+      std::min(kMaxTextureSize, static_cast<int>(std::bit_ceil(static_cast<unsigned>(largest))));
   gpu.textureSize = static_cast<uint32_t>(size);
 
   gpu.vertices = makeStorage(ctx, vertices);

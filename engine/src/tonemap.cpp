@@ -32,7 +32,9 @@ float luminance(float r, float g, float b) {
   return kLuminanceR * r + kLuminanceG * g + kLuminanceB * b;
 }
 
-uint8_t toUnorm8(float x) { return static_cast<uint8_t>(std::lround(x * 255.0f)); }
+uint8_t toUnorm8(float x) {
+  return static_cast<uint8_t>(std::lround(x * 255.0f));
+}
 
 }  // namespace
 

@@ -35,9 +35,15 @@ glm::mat4 lookAlong(const glm::vec3& eye, const glm::vec3& forward, const glm::v
   glm::vec3 s = glm::normalize(glm::cross(f, up));
   glm::vec3 u = glm::cross(s, f);
   glm::mat4 m(1.0f);
-  m[0][0] = s.x; m[1][0] = s.y; m[2][0] = s.z;
-  m[0][1] = u.x; m[1][1] = u.y; m[2][1] = u.z;
-  m[0][2] = -f.x; m[1][2] = -f.y; m[2][2] = -f.z;
+  m[0][0] = s.x;
+  m[1][0] = s.y;
+  m[2][0] = s.z;
+  m[0][1] = u.x;
+  m[1][1] = u.y;
+  m[2][1] = u.z;
+  m[0][2] = -f.x;
+  m[1][2] = -f.y;
+  m[2][2] = -f.z;
   m[3][0] = -glm::dot(s, eye);
   m[3][1] = -glm::dot(u, eye);
   m[3][2] = glm::dot(f, eye);

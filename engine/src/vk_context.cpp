@@ -126,11 +126,16 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
 
 int typeRank(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-    default: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 3;
+    default:
+      return 4;
   }
 }
 
@@ -138,22 +143,33 @@ int typeRank(VkPhysicalDeviceType type) {
 
 const char* vkResultName(VkResult result) {
   switch (result) {
-#define CASE(x) case x: return #x
-    CASE(VK_SUCCESS); CASE(VK_NOT_READY); CASE(VK_TIMEOUT); CASE(VK_INCOMPLETE);
-    CASE(VK_ERROR_OUT_OF_HOST_MEMORY); CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY);
-    CASE(VK_ERROR_INITIALIZATION_FAILED); CASE(VK_ERROR_DEVICE_LOST);
-    CASE(VK_ERROR_MEMORY_MAP_FAILED); CASE(VK_ERROR_LAYER_NOT_PRESENT);
-    CASE(VK_ERROR_EXTENSION_NOT_PRESENT); CASE(VK_ERROR_FEATURE_NOT_PRESENT);
-    CASE(VK_ERROR_INCOMPATIBLE_DRIVER); CASE(VK_ERROR_TOO_MANY_OBJECTS);
+#define CASE(x) \
+  case x:       \
+    return #x
+    CASE(VK_SUCCESS);
+    CASE(VK_NOT_READY);
+    CASE(VK_TIMEOUT);
+    CASE(VK_INCOMPLETE);
+    CASE(VK_ERROR_OUT_OF_HOST_MEMORY);
+    CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    CASE(VK_ERROR_INITIALIZATION_FAILED);
+    CASE(VK_ERROR_DEVICE_LOST);
+    CASE(VK_ERROR_MEMORY_MAP_FAILED);
+    CASE(VK_ERROR_LAYER_NOT_PRESENT);
+    CASE(VK_ERROR_EXTENSION_NOT_PRESENT);
+    CASE(VK_ERROR_FEATURE_NOT_PRESENT);
+    CASE(VK_ERROR_INCOMPATIBLE_DRIVER);
+    CASE(VK_ERROR_TOO_MANY_OBJECTS);
     CASE(VK_ERROR_FORMAT_NOT_SUPPORTED);
 #undef CASE
-    default: return "VkResult error";
+    default:
+      return "VkResult error";
   }
 }
 
 void throwVkError(const char* expression, VkResult result) {
-  throw Error(std::string("Vulkan: ") + expression + " failed with " + vkResultName(result) +
-              " (" + std::to_string(static_cast<int>(result)) + ")");
+  throw Error(std::string("Vulkan: ") + expression + " failed with " + vkResultName(result) + " (" +
+              std::to_string(static_cast<int>(result)) + ")");
 }
 
 std::vector<DeviceInfo> Context::listDevices() {
@@ -172,7 +188,8 @@ Context::Context(const ContextOptions& options) {
   if (validation_) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    VkDebugUtilsMessengerCreateInfoEXT info{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                            VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
@@ -205,9 +222,10 @@ Context::Context(const ContextOptions& options) {
     }
     if (chosen < 0) {
       std::string names;
-      for (const auto& info : infos) names += (names.empty() ? "" : ", ") + std::to_string(info.index) + ": " + info.name;
-      throw Error("Vulkan device selector '" + selector + "' matches no device (available: " +
-                  (names.empty() ? "none" : names) + ")");
+      for (const auto& info : infos)
+        names += (names.empty() ? "" : ", ") + std::to_string(info.index) + ": " + info.name;
+      throw Error("Vulkan device selector '" + selector +
+                  "' matches no device (available: " + (names.empty() ? "none" : names) + ")");
     }
   } else {
     for (const auto& info : infos) {
@@ -218,8 +236,9 @@ Context::Context(const ContextOptions& options) {
     if (chosen < 0) {
       std::string reasons;
       for (const auto& info : infos) reasons += "; " + info.name + ": " + info.unsuitableReason;
-      throw Error("Vulkan: no usable device" +
-                  (infos.empty() ? std::string(" (none found; install mesa-vulkan-drivers)") : reasons));
+      throw Error(
+          "Vulkan: no usable device" +
+          (infos.empty() ? std::string(" (none found; install mesa-vulkan-drivers)") : reasons));
     }
   }
   physicalDevice_ = devices[chosen];
@@ -329,8 +348,7 @@ uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags requir
   for (int pass = 0; pass < 2; ++pass) {
     VkMemoryPropertyFlags want = pass == 0 ? (required | preferred) : required;
     for (uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i) {
-      if ((typeBits & (1u << i)) &&
-          (memoryProperties_.memoryTypes[i].propertyFlags & want) == want)
+      if ((typeBits & (1u << i)) && (memoryProperties_.memoryTypes[i].propertyFlags & want) == want)
         return i;
     }
   }

@@ -3,8 +3,8 @@
 // measured frames, after a warm-up frame that pays for pipeline compilation).
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 
@@ -32,7 +32,8 @@ engine::Scene loadScene(const std::string& name) {
   if (isBuiltin(name)) return engine::makeBuiltinScene(name);
   std::filesystem::path path(name);
   if (path.extension() != ".gltf" && path.extension() != ".glb")
-    throw Error("--scene: '" + name + "' is neither a built-in scene (cornell, atrium, checker) nor a .gltf/.glb file");
+    throw Error("--scene: '" + name +
+                "' is neither a built-in scene (cornell, atrium, checker) nor a .gltf/.glb file");
   return engine::loadGltf(name);
 }
 
@@ -45,8 +46,8 @@ double median(std::vector<double> v) {
 int listDevices() {
   for (const auto& d : engine::Context::listDevices())
     std::printf("%u: %s (%s, Vulkan %s)%s%s\n", d.index, d.name.c_str(), d.driver.c_str(),
-                d.apiVersion.c_str(), d.unsuitableReason.empty() ? "" : " - unusable: ",
-                d.unsuitableReason.c_str());
+                d.apiVersion.c_str(),
+                d.unsuitableReason.empty() ? "" : " - unusable: ", d.unsuitableReason.c_str());
   return 0;
 }
 
@@ -61,7 +62,8 @@ int run(const render::Options& o) {
   engine::Scene scene = loadScene(o.scene);
   std::string stem = std::filesystem::path(o.scene).stem().string();
   if (!o.exportGltf.empty()) engine::writeGltf(scene, o.exportGltf);
-  engine::Camera camera = scene.cameras.empty() ? engine::defaultCamera(scene) : scene.cameras.front();
+  engine::Camera camera =
+      scene.cameras.empty() ? engine::defaultCamera(scene) : scene.cameras.front();
   engine::View view = engine::cameraView(camera, o.width, o.height);
 
   std::error_code ec;
@@ -86,7 +88,8 @@ int run(const render::Options& o) {
   radianceDesc.height = o.height;
   radianceDesc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   engine::Image radiance(ctx, radianceDesc);
-  ctx.submitAndWait([&](VkCommandBuffer cmd) { engine::imageBarrier(cmd, radiance, VK_IMAGE_LAYOUT_GENERAL); });
+  ctx.submitAndWait(
+      [&](VkCommandBuffer cmd) { engine::imageBarrier(cmd, radiance, VK_IMAGE_LAYOUT_GENERAL); });
 
   engine::GpuProfiler profiler(ctx);
   std::map<std::string, std::vector<double>> passTimes;
@@ -96,7 +99,8 @@ int run(const render::Options& o) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       profiler.beginFrame(cmd);
       engine::ProfileScope total(&profiler, cmd, "frame");
-      rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, o.width, o.height}, &profiler);
+      rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, o.width, o.height},
+                        &profiler);
       resolve.record(cmd, gpuScene, visibility, view, gbuffer, &profiler);
       direct.record(cmd, gpuScene, rasterizer, gbuffer, view, radiance, &profiler);
     });
@@ -112,7 +116,8 @@ int run(const render::Options& o) {
   }
 
   std::printf("GPU time per pass, median of %u frames (ms):\n", o.frames);
-  for (const auto& name : passOrder) std::printf("  %-18s %9.3f\n", name.c_str(), median(passTimes[name]));
+  for (const auto& name : passOrder)
+    std::printf("  %-18s %9.3f\n", name.c_str(), median(passTimes[name]));
   std::printf("  %-18s %9.3f\n", "frame total", median(frameTimes));
 
   auto bytes = radiance.readback(ctx);
@@ -128,10 +133,12 @@ int run(const render::Options& o) {
   engine::ToneMapSettings toneMap{o.exposureEv};
   engine::writePng(base + ".png", image.width, image.height, engine::toneMap(image, toneMap));
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-  std::printf("wrote %s.exr (linear) and %s.png (exposure x%.3g, ACES filmic, sRGB) in %.2f s wall\n",
-              base.c_str(), base.c_str(), engine::exposureScale(image, toneMap), wall);
+  std::printf(
+      "wrote %s.exr (linear) and %s.png (exposure x%.3g, ACES filmic, sRGB) in %.2f s wall\n",
+      base.c_str(), base.c_str(), engine::exposureScale(image, toneMap), wall);
   if (ctx.validationMessageCount() > 0) {
-    std::fprintf(stderr, "vsgl_render: error: %u validation messages\n", ctx.validationMessageCount());
+    std::fprintf(stderr, "vsgl_render: error: %u validation messages\n",
+                 ctx.validationMessageCount());
     return 1;
   }
   return 0;

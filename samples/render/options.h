@@ -13,14 +13,14 @@ struct Options {
   std::string outDir = "out";
   uint32_t width = 640;
   uint32_t height = 360;
-  uint32_t frames = 5;             // measured frames after one warm-up frame
-  uint32_t shadowResolution = 0;   // 0 = automatic: see shadowResolutionFor()
+  uint32_t frames = 5;            // measured frames after one warm-up frame
+  uint32_t shadowResolution = 0;  // 0 = automatic: see shadowResolutionFor()
   bool shadows = true;
   std::optional<float> exposureEv;
-  std::string device;              // index or name substring (else VSGL_DEVICE, else automatic)
+  std::string device;  // index or name substring (else VSGL_DEVICE, else automatic)
   bool validation = false;
   bool listDevices = false;
-  std::string exportGltf;          // write the (built-in) scene as .gltf to this path
+  std::string exportGltf;  // write the (built-in) scene as .gltf to this path
   bool help = false;
 };
 

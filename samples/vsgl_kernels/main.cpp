@@ -194,7 +194,9 @@ struct RuleRun {
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
+  return v.empty()
+             ? 0.0
+             : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
 }
 
 // GPU time of the final-step passes in the structure of [S3] Table 1 (lower row): additional
@@ -298,7 +300,8 @@ int run(const Options& o) {
     for (const glm::dvec3& k : runs[i].kernels) drawKernel(canvas, panel, k, o.rsmSize);
     for (const glm::dvec3& k : runs[i].kernels) drawCentre(canvas, panel, k, o.rsmSize);
   }
-  printTimings(ctx, o, gpuScene, rasterizer, resolve, rsm, mips, attributes, generator, view, light);
+  printTimings(ctx, o, gpuScene, rasterizer, resolve, rsm, mips, attributes, generator, view,
+               light);
 
   const std::string path = (std::filesystem::path(o.outDir) / (o.scene + "_kernels.png")).string();
   engine::writePng(path, canvas.width, canvas.height, canvas.rgba);

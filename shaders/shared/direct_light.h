@@ -40,7 +40,7 @@ struct ShadowView {
 };
 
 struct DirectLightPush {
-  mat4 invViewProj;      // camera
+  mat4 invViewProj;  // camera
   uvec2 viewport;
   uint lightCount;
   uint shadowResolution;  // shadow maps are square, this many texels on a side

@@ -23,12 +23,12 @@ SHARED_BEGIN
 // A screen-space triangle that survived clipping and culling, ready for coverage tests.
 // Vertices are ordered so that the doubled signed area is positive.
 struct RasterTriangle {
-  ivec2 p0;        // fixed-point screen position
+  ivec2 p0;  // fixed-point screen position
   ivec2 p1;
   ivec2 p2;
-  uint bboxMin;    // pixel x | (y << 16), inclusive
-  uint bboxMax;    // pixel x | (y << 16), inclusive
-  float z0;        // NDC depth in [0, 1]
+  uint bboxMin;  // pixel x | (y << 16), inclusive
+  uint bboxMax;  // pixel x | (y << 16), inclusive
+  float z0;      // NDC depth in [0, 1]
   float z1;
   float z2;
   uint triangleId;  // index of the source triangle in the scene

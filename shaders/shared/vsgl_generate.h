@@ -8,11 +8,11 @@
 SHARED_BEGIN
 
 struct VsglGeneratePush {
-  vec4 origin;      // xyz = RSM origin (world), added to every mean
-  uint count;       // N, VSGLs to generate
-  uint rule;        // VSGL_RULE_TOK15 or VSGL_RULE_MODIFIED
-  uint size;        // pyramid base size (power of two)
-  uint topLevel;    // log2(size)
+  vec4 origin;        // xyz = RSM origin (world), added to every mean
+  uint count;         // N, VSGLs to generate
+  uint rule;          // VSGL_RULE_TOK15 or VSGL_RULE_MODIFIED
+  uint size;          // pyramid base size (power of two)
+  uint topLevel;      // log2(size)
   float kernelScale;  // K (paper: 1); larger = blurrier, temporally steadier kernels
   uint pad0;
   uint pad1;

@@ -35,8 +35,12 @@ std::vector<glm::vec4> readRgba32f(engine::Context& ctx, engine::Image& image, u
   return out;
 }
 
-engine::Context* GpuTest::context() { return shared().context.get(); }
-const std::string& GpuTest::skipReason() { return shared().reason; }
+engine::Context* GpuTest::context() {
+  return shared().context.get();
+}
+const std::string& GpuTest::skipReason() {
+  return shared().reason;
+}
 
 void GpuTest::SetUp() {
   if (!context()) GTEST_SKIP() << "no usable Vulkan device: " << skipReason();

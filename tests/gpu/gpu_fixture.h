@@ -3,11 +3,11 @@
 // and fails when the validation layer reported anything while it ran.
 #pragma once
 
-#include <memory>
-#include <string>
+#include <gtest/gtest.h>
 
 #include <glm/glm.hpp>
-#include <gtest/gtest.h>
+#include <memory>
+#include <string>
 
 #include "engine/image.h"
 #include "engine/vk_context.h"

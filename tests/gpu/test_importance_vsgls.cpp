@@ -48,9 +48,12 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
   double solidAngle = 0.0, largest = 0.0;
   for (const auto& t : ref) largest = std::max(largest, t.incident.g);
   for (size_t i = 0; i < ref.size(); ++i) {
-    ASSERT_NEAR(diffuse[i].a, ref[i].incident.g, 1e-5 * ref[i].incident.g + 1e-6 * largest) << "pixel " << i;
+    ASSERT_NEAR(diffuse[i].a, ref[i].incident.g, 1e-5 * ref[i].incident.g + 1e-6 * largest)
+        << "pixel " << i;
     for (int k = 0; k < 3; ++k)
-      ASSERT_NEAR(diffuse[i][k], ref[i].diffuseFlux[k], 1e-5 * ref[i].diffuseFlux[k] + 1e-6 * largest) << "pixel " << i;
+      ASSERT_NEAR(diffuse[i][k], ref[i].diffuseFlux[k],
+                  1e-5 * ref[i].diffuseFlux[k] + 1e-6 * largest)
+          << "pixel " << i;
     solidAngle += diffuse[i].a;
   }
   // Every pixel sees the box, so the pixels' solid angles add up to the camera frustum's,
@@ -66,7 +69,8 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
     for (uint32_t y = 0; y < pyramidSize; ++y)
       for (uint32_t x = 0; x < pyramidSize; ++x)
         if (x >= width || y >= height) {
-          ASSERT_EQ(base[size_t{y} * pyramidSize + x], glm::vec4(0.0f)) << "attribute " << a << " texel " << x << ", " << y;
+          ASSERT_EQ(base[size_t{y} * pyramidSize + x], glm::vec4(0.0f))
+              << "attribute " << a << " texel " << x << ", " << y;
         }
   }
 
@@ -77,7 +81,8 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
   for (uint32_t i = 0; i < 256; ++i) {
     EXPECT_LT(v[i].kernel.x * pyramidSize, float(width)) << "VSGL " << i;
     EXPECT_LT(v[i].kernel.y * pyramidSize, float(height)) << "VSGL " << i;
-    EXPECT_TRUE(std::isfinite(v[i].diffuse.axisSharpness.w) && std::isfinite(v[i].specular.axisSharpness.w));
+    EXPECT_TRUE(std::isfinite(v[i].diffuse.axisSharpness.w) &&
+                std::isfinite(v[i].specular.axisSharpness.w));
     total += v[i].diffuse.power.g;
   }
   for (const auto& t : ref) importanceSum += t.diffuseFlux.g;

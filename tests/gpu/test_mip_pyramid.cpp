@@ -20,7 +20,8 @@ class MipPyramidTest : public testing_gpu::GpuTest {
   std::vector<std::vector<glm::vec4>> reduce(const std::vector<glm::vec4>& base, uint32_t size) {
     engine::Image pyramid = gi::createPyramid(ctx(), size);
     std::vector<glm::vec4> texels(base);
-    for (uint32_t level = 1; level < pyramid.desc().mips; ++level) texels.resize(texels.size() + (size_t{size} >> level) * (size >> level));
+    for (uint32_t level = 1; level < pyramid.desc().mips; ++level)
+      texels.resize(texels.size() + (size_t{size} >> level) * (size >> level));
     pyramid.upload(ctx(), texels.data(), texels.size() * sizeof(glm::vec4));
     gi::MipPyramid mips(ctx());
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
@@ -58,7 +59,8 @@ class MipPyramidTest : public testing_gpu::GpuTest {
           ASSERT_LE(err, bound * m) << "level " << level << " texel " << i << " channel " << k;
         }
     }
-    std::printf("worst relative error %.2e (bound %.2e)\n", worst, 2.0 * double(ref.size() - 1) * u);
+    std::printf("worst relative error %.2e (bound %.2e)\n", worst,
+                2.0 * double(ref.size() - 1) * u);
   }
 };
 
@@ -67,7 +69,8 @@ TEST_F(MipPyramidTest, PositiveDataOverSixDecadesMatchesExactMeans) {
   std::mt19937 rng(5);
   std::vector<glm::vec4> base(size_t{size} * size);
   for (auto& v : base)
-    for (int k = 0; k < 4; ++k) v[k] = std::ldexp(static_cast<float>(rng() >> 8) * 0x1p-24f + 0.5f, int(rng() % 20) - 10);
+    for (int k = 0; k < 4; ++k)
+      v[k] = std::ldexp(static_cast<float>(rng() >> 8) * 0x1p-24f + 0.5f, int(rng() % 20) - 10);
   base[100] = glm::vec4(0.0f);  // zero power texels are common (background)
   compare(base, size, false);
 }

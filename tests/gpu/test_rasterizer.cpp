@@ -73,8 +73,10 @@ std::vector<uint32_t> gridIndices(int n) {
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       uint32_t a = at(i, j), b = at(i + 1, j), c = at(i, j + 1), d = at(i + 1, j + 1);
-      if ((i + j) % 2 == 0) idx.insert(idx.end(), {a, b, d, a, d, c});
-      else idx.insert(idx.end(), {a, b, c, b, d, c});
+      if ((i + j) % 2 == 0)
+        idx.insert(idx.end(), {a, b, d, a, d, c});
+      else
+        idx.insert(idx.end(), {a, b, c, b, d, c});
     }
   }
   return idx;
@@ -133,7 +135,8 @@ TEST_F(Rasterizer, MatchesReferenceOnShadowViews) {
       SCOPED_TRACE(name + " shadow view " + std::to_string(v));
       const glm::mat4& vp = setup.views[v].viewProj;
       GpuRaster gpu = rasterizeGpu(ctx(), scene, vp, size, size);
-      EXPECT_TRUE(sameVisibility(gpu.visibility, engine::rasterizeReference(scene, vp, size, size).visibility, size));
+      EXPECT_TRUE(sameVisibility(
+          gpu.visibility, engine::rasterizeReference(scene, vp, size, size).visibility, size));
     }
   }
 }
@@ -142,8 +145,11 @@ TEST_F(Rasterizer, JitteredGridIsWatertight) {
   // A grid much larger than the view, facing the camera: every pixel is covered exactly once.
   const uint32_t w = 97, h = 61;  // odd sizes: pixel centres fall on no special fractions
   Scene grid = jitteredGrid(24, 2.0f, false, 0.0f, 7);
-  glm::mat4 view = engine::lookAlong(glm::vec3(0.05f, -0.03f, 2.0f), glm::vec3(0.1f, 0.05f, -1.0f), glm::vec3(0, 1, 0));
-  glm::mat4 vp = engine::perspectiveVulkan(0.8f, static_cast<float>(w) / static_cast<float>(h), 0.1f, 10.0f) * view;
+  glm::mat4 view = engine::lookAlong(glm::vec3(0.05f, -0.03f, 2.0f), glm::vec3(0.1f, 0.05f, -1.0f),
+                                     glm::vec3(0, 1, 0));
+  glm::mat4 vp =
+      engine::perspectiveVulkan(0.8f, static_cast<float>(w) / static_cast<float>(h), 0.1f, 10.0f) *
+      view;
   engine::ReferenceRaster cpu = engine::rasterizeReference(grid, vp, w, h);
   for (size_t i = 0; i < cpu.coverage.size(); ++i)
     ASSERT_EQ(cpu.coverage[i], 1u) << "pixel (" << i % w << ", " << i / w << ")";
@@ -157,7 +163,9 @@ TEST_F(Rasterizer, PixelAlignedGridExercisesTheFillRule) {
   const uint32_t size = 64;
   std::vector<glm::vec3> p;
   const int n = 20;  // 20 cells of 4 pixels: the grid overhangs the 64-pixel view
-  auto ndc = [&](int k) { return (static_cast<float>(4 * k - 8) + 0.5f) / static_cast<float>(size) * 2.0f - 1.0f; };
+  auto ndc = [&](int k) {
+    return (static_cast<float>(4 * k - 8) + 0.5f) / static_cast<float>(size) * 2.0f - 1.0f;
+  };
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) p.push_back(glm::vec3(ndc(i), -ndc(j), 0.0f));
   Scene grid = meshScene(std::move(p), gridIndices(n));
@@ -180,7 +188,8 @@ TEST_F(Rasterizer, NearPlaneClippedGroundIsWatertight) {
   Scene grid = jitteredGrid(40, half, true, ground, 11);
   glm::vec3 eye(0.3f, 0.0f, 0.2f);
   glm::mat4 view = engine::lookAlong(eye, glm::vec3(0.2f, -0.25f, -1.0f), glm::vec3(0, 1, 0));
-  glm::mat4 proj = engine::perspectiveVulkan(1.2f, static_cast<float>(w) / static_cast<float>(h), 0.05f, 0.0f);
+  glm::mat4 proj =
+      engine::perspectiveVulkan(1.2f, static_cast<float>(w) / static_cast<float>(h), 0.05f, 0.0f);
   glm::mat4 vp = proj * view;
   glm::mat4 inv = glm::inverse(vp);
   engine::ReferenceRaster cpu = engine::rasterizeReference(grid, vp, w, h);

@@ -39,11 +39,12 @@ GpuRsm renderRsm(engine::Context& ctx, const engine::Scene& scene, const engine:
   engine::Rasterizer rasterizer(ctx);
   engine::GBufferResolve resolve(ctx);
   gi::ReflectiveShadowMap rsm(ctx, size);
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    rsm.record(cmd, gpuScene, rasterizer, resolve, view, light);
-  });
-  return {engine::readbackGBuffer(ctx, rsm.surface()), testing_gpu::readRgba32f(ctx, rsm.position()),
-          testing_gpu::readRgba32f(ctx, rsm.diffuseFlux()), testing_gpu::readRgba32f(ctx, rsm.specularFlux())};
+  ctx.submitAndWait(
+      [&](VkCommandBuffer cmd) { rsm.record(cmd, gpuScene, rasterizer, resolve, view, light); });
+  return {engine::readbackGBuffer(ctx, rsm.surface()),
+          testing_gpu::readRgba32f(ctx, rsm.position()),
+          testing_gpu::readRgba32f(ctx, rsm.diffuseFlux()),
+          testing_gpu::readRgba32f(ctx, rsm.specularFlux())};
 }
 
 double maxLuminance(const std::vector<gi::RsmTexelReference>& ref) {
@@ -71,10 +72,14 @@ TEST_F(Rsm, FluxMatchesReferenceOnBuiltinScenes) {
     size_t lit = 0;
     for (size_t i = 0; i < ref.size(); ++i) {
       const auto& r = ref[i];
-      auto near = [&](double g, double c, double abs) { return std::abs(g - c) <= 1e-5 * std::abs(c) + abs; };
+      auto near = [&](double g, double c, double abs) {
+        return std::abs(g - c) <= 1e-5 * std::abs(c) + abs;
+      };
       for (int k = 0; k < 3; ++k) {
-        ASSERT_TRUE(near(gpu.diffuse[i][k], r.diffuseFlux[k], floor)) << "texel " << i << " diffuse " << k;
-        ASSERT_TRUE(near(gpu.specular[i][k], r.specularFlux[k], floor)) << "texel " << i << " specular " << k;
+        ASSERT_TRUE(near(gpu.diffuse[i][k], r.diffuseFlux[k], floor))
+            << "texel " << i << " diffuse " << k;
+        ASSERT_TRUE(near(gpu.specular[i][k], r.specularFlux[k], floor))
+            << "texel " << i << " specular " << k;
       }
       if (r.lit != gpu.position[i].w) {
         // Only a texel whose power is at the rounding floor may switch between lit and unlit.
@@ -82,7 +87,8 @@ TEST_F(Rsm, FluxMatchesReferenceOnBuiltinScenes) {
         continue;
       }
       for (int k = 0; k < 3; ++k)
-        ASSERT_TRUE(near(gpu.position[i][k], r.offset[k], 1e-6)) << "texel " << i << " position " << k;
+        ASSERT_TRUE(near(gpu.position[i][k], r.offset[k], 1e-6))
+            << "texel " << i << " position " << k;
       lit += r.lit > 0.0;
     }
     EXPECT_GT(lit, ref.size() / 4) << "the light should reach much of its RSM";
@@ -147,7 +153,8 @@ TEST_F(Rsm, IncidentFluxEqualsIntensityTimesTheConesWeightedSolidAngle) {
   }
   expected *= 2.0 * M_PI * spot.outerConeAngle / steps;
   double error = std::abs(total - expected) / expected;
-  std::printf("RSM incident flux %.8f W, expected %.8f W, relative error %.2e\n", total, expected, error);
+  std::printf("RSM incident flux %.8f W, expected %.8f W, relative error %.2e\n", total, expected,
+              error);
   EXPECT_LT(error, 1e-3);
 }
 

@@ -36,7 +36,9 @@ class VsglAttributesTest : public testing_gpu::GpuTest {
   }
 
   void buildAttributes() {
-    ctx().submitAndWait([&](VkCommandBuffer cmd) { attributes_->record(cmd, rsm_->vpls(), rsm_->surface(), view_, *mips_); });
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      attributes_->record(cmd, rsm_->vpls(), rsm_->surface(), view_, *mips_);
+    });
   }
 
   engine::Scene scene_;
@@ -62,8 +64,10 @@ TEST_F(VsglAttributesTest, TopLevelTimesTexelCountConservesRsmPower) {
     totalSpecular += glm::dvec3(specular[i]);
   }
   const double m = double(kSize) * kSize, bound = 2.0 * 6.0 * std::ldexp(1.0, -24);
-  auto topDiffuse = testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER), 6).at(0);
-  auto topSpecular = testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_SPECULAR_POWER), 6).at(0);
+  auto topDiffuse =
+      testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER), 6).at(0);
+  auto topSpecular =
+      testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_SPECULAR_POWER), 6).at(0);
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(topDiffuse[k] * m, totalDiffuse[k], bound * totalDiffuse[k]) << "channel " << k;
     EXPECT_NEAR(topSpecular[k] * m, totalSpecular[k], bound * totalSpecular[k]) << "channel " << k;
@@ -74,7 +78,8 @@ TEST_F(VsglAttributesTest, TopLevelTimesTexelCountConservesRsmPower) {
 
 TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
   buildAttributes();
-  gi::RsmImages rsm{testing_gpu::readRgba32f(ctx(), rsm_->position(), 0), testing_gpu::readRgba32f(ctx(), rsm_->diffuseFlux(), 0),
+  gi::RsmImages rsm{testing_gpu::readRgba32f(ctx(), rsm_->position(), 0),
+                    testing_gpu::readRgba32f(ctx(), rsm_->diffuseFlux(), 0),
                     testing_gpu::readRgba32f(ctx(), rsm_->specularFlux(), 0),
                     engine::readbackGBuffer(ctx(), rsm_->surface())};
   auto ref = gi::vsglAttributesReference(rsm, view_);
@@ -120,7 +125,8 @@ TEST_F(VsglAttributesTest, ANonFiniteTexelDoesNotPoisonThePyramid) {
     EXPECT_EQ(base[lit[1]], glm::vec4(0.0f)) << "attribute " << a;
     for (uint32_t level = 0; level < attributes_->pyramid(a).desc().mips; ++level)
       for (const glm::vec4& v : testing_gpu::readRgba32f(ctx(), attributes_->pyramid(a), level))
-        ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w))
+        ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
+                    std::isfinite(v.w))
             << "attribute " << a << " level " << level;
   }
 }
@@ -150,7 +156,8 @@ TEST_F(VsglAttributesTest, GeneratedVsglsMatchReferenceForBothRules) {
     for (uint32_t n : {64u, 1000u}) {
       SCOPED_TRACE("rule " + std::to_string(rule) + " N " + std::to_string(n));
       gi::VsglSettings settings{n, 1.0f, rule};
-      ctx().submitAndWait([&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, settings); });
+      ctx().submitAndWait(
+          [&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, settings); });
       auto gpu = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
       auto ref = gi::generateVsglsReference(pyramids, pdf, glm::dvec3(view_.origin), n, 1.0, rule);
       size_t flips = 0;
@@ -165,11 +172,14 @@ TEST_F(VsglAttributesTest, GeneratedVsglsMatchReferenceForBothRules) {
           ++flips;
           continue;
         }
-        for (const auto& [gl, rl] : {std::pair{g.diffuse, r.diffuse}, std::pair{g.specular, r.specular}}) {
+        for (const auto& [gl, rl] :
+             {std::pair{g.diffuse, r.diffuse}, std::pair{g.specular, r.specular}}) {
           for (int k = 0; k < 4; ++k) {
-            ASSERT_NEAR(gl.power[k], rl.power[k], 1e-3 * std::abs(rl.power[k]) + 1e-9) << "VSGL " << i;
+            ASSERT_NEAR(gl.power[k], rl.power[k], 1e-3 * std::abs(rl.power[k]) + 1e-9)
+                << "VSGL " << i;
             ASSERT_NEAR(gl.meanVariance[k], rl.meanVariance[k],
-                        1e-3 * std::abs(rl.meanVariance[k]) + 1e-4) << "VSGL " << i;
+                        1e-3 * std::abs(rl.meanVariance[k]) + 1e-4)
+                << "VSGL " << i;
           }
           ASSERT_TRUE(std::isfinite(gl.axisSharpness.w)) << "VSGL " << i;
         }
@@ -187,21 +197,28 @@ TEST_F(VsglAttributesTest, ModifiedFisConservesTheRsmPower) {
   // 2 % of the total for a PDF proportional to power (the energy test), and with
   // K >= N every VSGL holds exactly total / N.
   buildAttributes();
-  auto top = testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER), 6).at(0);
+  auto top =
+      testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER), 6).at(0);
   const double total = double(top.g) * kSize * kSize;
   gi::VsglGenerator generator(ctx(), 1024);
   for (uint32_t n : {64u, 256u, 1024u}) {
-    ctx().submitAndWait([&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, {n, 1.0f, VSGL_RULE_MODIFIED}); });
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      generator.record(cmd, *attributes_, view_, {n, 1.0f, VSGL_RULE_MODIFIED});
+    });
     auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
     double sum = 0.0;
     for (uint32_t i = 0; i < n; ++i) sum += v[i].diffuse.power.g;
-    std::printf("N %u: VSGL diffuse power %.6f of RSM %.6f (%.3f %%)\n", n, sum, total, 100.0 * (sum / total - 1.0));
+    std::printf("N %u: VSGL diffuse power %.6f of RSM %.6f (%.3f %%)\n", n, sum, total,
+                100.0 * (sum / total - 1.0));
     EXPECT_NEAR(sum, total, 0.02 * total) << "N " << n;
   }
   const uint32_t n = 16;
-  ctx().submitAndWait([&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, {n, float(n), VSGL_RULE_MODIFIED}); });
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    generator.record(cmd, *attributes_, view_, {n, float(n), VSGL_RULE_MODIFIED});
+  });
   auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
-  for (uint32_t i = 0; i < n; ++i) EXPECT_NEAR(v[i].diffuse.power.g, total / n, 1e-5 * total / n) << "VSGL " << i;
+  for (uint32_t i = 0; i < n; ++i)
+    EXPECT_NEAR(v[i].diffuse.power.g, total / n, 1e-5 * total / n) << "VSGL " << i;
 }
 
 TEST_F(VsglAttributesTest, AnAllZeroRsmGivesFiniteVsglsWithoutPower) {
@@ -219,7 +236,9 @@ TEST_F(VsglAttributesTest, AnAllZeroRsmGivesFiniteVsglsWithoutPower) {
   buildAttributes();
   gi::VsglGenerator generator(ctx(), 64);
   for (uint32_t rule : {VSGL_RULE_TOK15, VSGL_RULE_MODIFIED}) {
-    ctx().submitAndWait([&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, {64, 1.0f, rule}); });
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      generator.record(cmd, *attributes_, view_, {64, 1.0f, rule});
+    });
     auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
     for (uint32_t i = 0; i < 64; ++i) {
       const float* f = &v[i].diffuse.meanVariance.x;

@@ -3,5 +3,9 @@
 // OpenImageIO 2.4's PNG reader leaks its read-callback state when libpng aborts on a truncated
 // file (PNGInput::PngReadCallback). Frame-pointer unwinding stops inside libstdc++ and would
 // hide that frame from the suppression, hence the slow unwinder.
-extern "C" const char* __asan_default_options() { return "fast_unwind_on_malloc=0"; }
-extern "C" const char* __lsan_default_suppressions() { return "leak:PNGInput::PngReadCallback\n"; }
+extern "C" const char* __asan_default_options() {
+  return "fast_unwind_on_malloc=0";
+}
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:PNGInput::PngReadCallback\n";
+}

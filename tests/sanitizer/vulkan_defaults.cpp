@@ -3,4 +3,6 @@
 // modules they dlclose before LeakSanitizer reports, so the reports cannot even be symbolised;
 // leak checking is off for these binaries while AddressSanitizer and UBSan stay on. Our own
 // allocations are leak-checked by unit_tests.
-extern "C" const char* __asan_default_options() { return "detect_leaks=0"; }
+extern "C" const char* __asan_default_options() {
+  return "detect_leaks=0";
+}

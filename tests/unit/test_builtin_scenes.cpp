@@ -120,9 +120,9 @@ TEST_P(BuiltinScene, LightsAndCameraFrameTheScene) {
   const engine::Scene scene = engine::makeBuiltinScene(GetParam());
   const engine::Bounds bounds = scene.bounds();
   const glm::vec3 size = bounds.max - bounds.min;
-  EXPECT_TRUE(glm::all(glm::greaterThan(size, glm::vec3(1.0f))));   // metres: rooms, not
-  EXPECT_TRUE(glm::all(glm::lessThan(size, glm::vec3(20.0f))));     // millimetres or stadiums
-  EXPECT_GE(bounds.min.y, 0.0f);  // +Y up, floor at 0
+  EXPECT_TRUE(glm::all(glm::greaterThan(size, glm::vec3(1.0f))));  // metres: rooms, not
+  EXPECT_TRUE(glm::all(glm::lessThan(size, glm::vec3(20.0f))));    // millimetres or stadiums
+  EXPECT_GE(bounds.min.y, 0.0f);                                   // +Y up, floor at 0
 
   ASSERT_FALSE(scene.lights.empty());
   for (const engine::Light& light : scene.lights) {
@@ -145,7 +145,8 @@ TEST_P(BuiltinScene, LightsAndCameraFrameTheScene) {
   const glm::mat3 rotation(camera.cameraToWorld);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(glm::length(rotation[i]), 1.0f, kTolerance);
-    for (int j = i + 1; j < 3; ++j) EXPECT_NEAR(glm::dot(rotation[i], rotation[j]), 0.0f, kTolerance);
+    for (int j = i + 1; j < 3; ++j)
+      EXPECT_NEAR(glm::dot(rotation[i], rotation[j]), 0.0f, kTolerance);
   }
   EXPECT_NEAR(glm::determinant(rotation), 1.0f, kTolerance);
   EXPECT_NEAR(rotation[0].y, 0.0f, kTolerance);  // level horizon
@@ -176,9 +177,9 @@ TEST_P(BuiltinScene, LightsAndCameraFrameTheScene) {
 
 TEST_P(BuiltinScene, RoundTripsThroughGltf) {
   static std::atomic<int> counter{0};
-  const fs::path dir = fs::temp_directory_path() / ("vsgl_builtin_test_" +
-                                                    std::to_string(::getpid()) + "_" +
-                                                    std::to_string(counter++));
+  const fs::path dir =
+      fs::temp_directory_path() /
+      ("vsgl_builtin_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   fs::create_directories(dir);
   const engine::Scene scene = engine::makeBuiltinScene(GetParam());
   const fs::path path = dir / (GetParam() + ".gltf");
@@ -250,7 +251,8 @@ INSTANTIATE_TEST_SUITE_P(Builtin, BuiltinScene, ::testing::ValuesIn(engine::buil
                          });
 
 TEST(BuiltinScenes, NamesAndUnknownName) {
-  EXPECT_EQ(engine::builtinSceneNames(), (std::vector<std::string>{"cornell", "atrium", "checker"}));
+  EXPECT_EQ(engine::builtinSceneNames(),
+            (std::vector<std::string>{"cornell", "atrium", "checker"}));
   try {
     engine::makeBuiltinScene("sponza");
     FAIL() << "no error";

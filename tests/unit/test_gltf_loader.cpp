@@ -8,12 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <glm/gtc/matrix_transform.hpp>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <nlohmann/json.hpp>
 
 #include "engine/error.h"
 #include "engine/gltf.h"
@@ -76,12 +75,18 @@ std::vector<uint8_t> base64Decode(const std::string& text) {
   int count = 0;
   for (char c : text) {
     int value;
-    if (c >= 'A' && c <= 'Z') value = c - 'A';
-    else if (c >= 'a' && c <= 'z') value = c - 'a' + 26;
-    else if (c >= '0' && c <= '9') value = c - '0' + 52;
-    else if (c == '+') value = 62;
-    else if (c == '/') value = 63;
-    else continue;  // '=' padding
+    if (c >= 'A' && c <= 'Z')
+      value = c - 'A';
+    else if (c >= 'a' && c <= 'z')
+      value = c - 'a' + 26;
+    else if (c >= '0' && c <= '9')
+      value = c - '0' + 52;
+    else if (c == '+')
+      value = 62;
+    else if (c == '/')
+      value = 63;
+    else
+      continue;  // '=' padding
     bits = (bits << 6) | static_cast<uint32_t>(value);
     count += 6;
     if (count >= 8) {
@@ -174,7 +179,8 @@ glm::vec3 corner(const engine::Scene& scene, uint32_t triangle, int k) {
 
 glm::vec3 geometricNormal(const engine::Scene& scene, uint32_t triangle) {
   const glm::vec3 p0 = corner(scene, triangle, 0);
-  return glm::normalize(glm::cross(corner(scene, triangle, 1) - p0, corner(scene, triangle, 2) - p0));
+  return glm::normalize(
+      glm::cross(corner(scene, triangle, 1) - p0, corner(scene, triangle, 2) - p0));
 }
 
 TEST(GltfLoader, TriangleWithSpotLightAndCamera) {
@@ -280,8 +286,8 @@ TEST(GltfLoader, GeneratesAreaWeightedNormals) {
   const glm::vec3 faceB = glm::normalize(glm::vec3(1, 1, 0));
   const glm::vec3 ridgeFront = glm::normalize(glm::vec3(-1, 5, 0));
   const glm::vec3 ridgeBack = glm::normalize(glm::vec3(1, 4, 0));
-  const glm::vec3 expected[8] = {faceA, faceA, ridgeFront, ridgeBack,
-                                 ridgeFront, ridgeBack, faceB, faceB};
+  const glm::vec3 expected[8] = {faceA,      faceA,     ridgeFront, ridgeBack,
+                                 ridgeFront, ridgeBack, faceB,      faceB};
   for (size_t v = 0; v < 8; ++v) {
     SCOPED_TRACE(v);
     expectVec3Near(scene.normals[v], expected[v]);
@@ -313,8 +319,8 @@ TEST(GltfLoader, MirroredNodeFlipsWinding) {
 void expectCheckerTexture(const engine::Texture& texture) {
   ASSERT_EQ(texture.width, 2);
   ASSERT_EQ(texture.height, 2);
-  const std::vector<uint8_t> expected = {255, 0, 0, 255, 0, 255, 0, 255,
-                                         0, 0, 255, 255, 255, 255, 255, 255};
+  const std::vector<uint8_t> expected = {255, 0, 0,   255, 0,   255, 0,   255,
+                                         0,   0, 255, 255, 255, 255, 255, 255};
   EXPECT_EQ(texture.rgba8, expected);
 }
 
@@ -350,7 +356,8 @@ TEST(GltfLoader, GlbLoadsLikeGltf) {
     EXPECT_EQ(a.uvs, b.uvs);
     EXPECT_EQ(a.indices, b.indices);
     ASSERT_EQ(a.textures.size(), b.textures.size());
-    for (size_t i = 0; i < a.textures.size(); ++i) EXPECT_EQ(a.textures[i].rgba8, b.textures[i].rgba8);
+    for (size_t i = 0; i < a.textures.size(); ++i)
+      EXPECT_EQ(a.textures[i].rgba8, b.textures[i].rgba8);
     EXPECT_EQ(a.lights.size(), b.lights.size());
     EXPECT_EQ(a.cameras.size(), b.cameras.size());
   }
@@ -418,14 +425,16 @@ TEST(GltfLoaderErrors, TruncatedGlb) {
   // Every cut, each a clean error.
   for (size_t size = 0; size < glb.size(); size += 7) {
     SCOPED_TRACE(size);
-    writeBytes(dir / "cut.glb", std::vector<uint8_t>(glb.begin(), glb.begin() + static_cast<long>(size)));
+    writeBytes(dir / "cut.glb",
+               std::vector<uint8_t>(glb.begin(), glb.begin() + static_cast<long>(size)));
     expectLoadError(dir / "cut.glb", "");
   }
 }
 
 TEST(GltfLoaderErrors, BadBuffersAndIndices) {
   expectLoadError(kGltfData / "bad_short_buffer.gltf", "do not fit in bufferView");
-  expectLoadError(kGltfData / "bad_index_out_of_range.gltf", "index 5 at position 2 is out of range");
+  expectLoadError(kGltfData / "bad_index_out_of_range.gltf",
+                  "index 5 at position 2 is out of range");
   expectLoadError(kGltfData / "bad_missing_buffer.gltf", "does_not_exist.bin");
 }
 
@@ -472,10 +481,9 @@ TEST(GltfLoaderErrors, BadReferencesAndValues) {
       {"offset", [](json& g) { g["accessors"][0]["byteOffset"] = 4; }, "do not fit"},
       {"sparse",
        [](json& g) {
-         g["accessors"][0]["sparse"] = {
-             {"count", 1},
-             {"indices", {{"bufferView", 0}, {"componentType", 5125}}},
-             {"values", {{"bufferView", 0}}}};
+         g["accessors"][0]["sparse"] = {{"count", 1},
+                                        {"indices", {{"bufferView", 0}, {"componentType", 5125}}},
+                                        {"values", {{"bufferView", 0}}}};
        },
        "sparse accessors are not supported"},
       {"mode", [](json& g) { g["meshes"][0]["primitives"][0]["mode"] = 1; },
@@ -489,7 +497,10 @@ TEST(GltfLoaderErrors, BadReferencesAndValues) {
        },
        "texture 2 does not exist"},
       {"yfov", [](json& g) { g["cameras"][0]["perspective"]["yfov"] = 4.0; }, "yfov"},
-      {"outer cone", [](json& g) { g["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"]["outerConeAngle"] = 2.0; },
+      {"outer cone",
+       [](json& g) {
+         g["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"]["outerConeAngle"] = 2.0;
+       },
        "outerConeAngle"},
       {"no triangles", [](json& g) { g["nodes"][0].erase("mesh"); }, "scene has no triangles"},
       {"scene", [](json& g) { g["scene"] = 3; }, "scene 3 does not exist"},

@@ -21,7 +21,9 @@ engine::ImageRgba32f constantImage(int width, int height, float r, float g, floa
   return image;
 }
 
-TEST(ToneMap, AcesFilmicIsZeroAtZero) { EXPECT_EQ(engine::acesFilmic(0.0f), 0.0f); }
+TEST(ToneMap, AcesFilmicIsZeroAtZero) {
+  EXPECT_EQ(engine::acesFilmic(0.0f), 0.0f);
+}
 
 TEST(ToneMap, AcesFilmicMatchesNarkowiczAtOne) {
   // 1 * (2.51 + 0.03) / (1 * (2.43 + 0.59) + 0.14) = 2.54 / 3.16

@@ -1,9 +1,9 @@
 // Projection and view conventions (docs/architecture.md): Vulkan clip space with NDC y down and
 // depth [0, 1], infinite far planes, orthographic windows, and the shadow views of each light.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <gtest/gtest.h>
 
 #include "engine/direct_light.h"
 #include "engine/view.h"

@@ -29,7 +29,9 @@ class Buffer {
 
   VkBuffer handle() const { return buffer_; }
   VkDeviceSize size() const { return size_; }
-  void* mapped() const { return mapped_; }  // non-null for Upload/Readback (and host-visible GpuOnly)
+  void* mapped() const {
+    return mapped_;
+  }  // non-null for Upload/Readback (and host-visible GpuOnly)
 
   // Copies bytes into the buffer: directly when it is mapped, else through a staging buffer
   // and a blocking submit (scene upload time, never inside a frame).

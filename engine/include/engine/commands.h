@@ -22,8 +22,8 @@ void imageBarrier(VkCommandBuffer cmd, Image& image, VkImageLayout layout);
 
 // Fills a buffer range with a 32-bit pattern (vkCmdFillBuffer), ordered after earlier shader
 // accesses and made visible to later compute and indirect reads.
-void fillBuffer(VkCommandBuffer cmd, const Buffer& buffer, uint32_t pattern, VkDeviceSize offset = 0,
-                VkDeviceSize size = VK_WHOLE_SIZE);
+void fillBuffer(VkCommandBuffer cmd, const Buffer& buffer, uint32_t pattern,
+                VkDeviceSize offset = 0, VkDeviceSize size = VK_WHOLE_SIZE);
 
 // Writes up to 65536 bytes inline (vkCmdUpdateBuffer) with the same ordering as fillBuffer.
 void updateBuffer(VkCommandBuffer cmd, const Buffer& buffer, const void* data, VkDeviceSize bytes);

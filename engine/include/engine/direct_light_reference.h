@@ -18,10 +18,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "engine/direct_light.h"
 #include "engine/gbuffer_reference.h"

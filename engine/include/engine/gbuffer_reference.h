@@ -15,10 +15,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "engine/gbuffer.h"
 #include "engine/scene.h"

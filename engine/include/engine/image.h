@@ -16,7 +16,8 @@ struct ImageDesc {
   uint32_t mips = 1;
   VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
   VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT;
-  bool arrayView = false;  // view as 2D_ARRAY (texture arrays) rather than 2D; implied by layers > 1
+  bool arrayView =
+      false;  // view as 2D_ARRAY (texture arrays) rather than 2D; implied by layers > 1
 };
 
 class Image {

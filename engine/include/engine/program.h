@@ -18,7 +18,8 @@ struct Binding {
   VkDescriptorBufferInfo buffer{};
   VkDescriptorImageInfo image{};
 
-  static Binding storage(const Buffer& b, VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE) {
+  static Binding storage(const Buffer& b, VkDeviceSize offset = 0,
+                         VkDeviceSize range = VK_WHOLE_SIZE) {
     return {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, {b.handle(), offset, range}, {}};
   }
   static Binding uniform(const Buffer& b) {
@@ -52,7 +53,8 @@ class ComputeProgram {
 
   // Binds the pipeline, pushes descriptors and constants, and dispatches `groups` work groups.
   void dispatch(VkCommandBuffer cmd, std::initializer_list<Binding> bindings, const void* push,
-                uint32_t pushBytes, uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) const;
+                uint32_t pushBytes, uint32_t groupsX, uint32_t groupsY = 1,
+                uint32_t groupsZ = 1) const;
   template <class Push>
   void dispatch(VkCommandBuffer cmd, std::initializer_list<Binding> bindings, const Push& push,
                 uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) const {

@@ -5,10 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace engine {
 
@@ -25,10 +24,10 @@ struct Texture {
 // one-bounce transport from emissive surfaces is outside this module's scope.
 struct Material {
   std::string name;
-  glm::vec4 baseColorFactor{1.0f};  // linear RGBA
-  float metallicFactor = 1.0f;      // [0, 1]
-  float roughnessFactor = 1.0f;     // perceptual roughness r in [0, 1]; GGX alpha = r^2
-  int baseColorTexture = -1;        // index into Scene::textures, -1 = none
+  glm::vec4 baseColorFactor{1.0f};    // linear RGBA
+  float metallicFactor = 1.0f;        // [0, 1]
+  float roughnessFactor = 1.0f;       // perceptual roughness r in [0, 1]; GGX alpha = r^2
+  int baseColorTexture = -1;          // index into Scene::textures, -1 = none
   int metallicRoughnessTexture = -1;  // glTF packing: roughness in G, metallic in B
   bool doubleSided = false;
 };
@@ -38,13 +37,13 @@ enum class LightType : uint32_t { Directional = 0, Point = 1, Spot = 2 };
 struct Light {
   std::string name;
   LightType type = LightType::Point;
-  glm::vec3 position{0.0f};            // world space (unused for directional)
+  glm::vec3 position{0.0f};                // world space (unused for directional)
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, the way light travels (node -Z), world space
-  glm::vec3 color{1.0f};               // linear RGB, multiplies intensity
-  float intensity = 1.0f;              // point/spot: W/sr; directional: W/m^2 on a normal plane
-  float range = 0.0f;                  // metres; 0 = infinite (KHR_lights_punctual)
-  float innerConeAngle = 0.0f;         // radians, spot only, in [0, outer)
-  float outerConeAngle = 0.7853982f;   // radians, spot only, in (0, pi/2]
+  glm::vec3 color{1.0f};                   // linear RGB, multiplies intensity
+  float intensity = 1.0f;                  // point/spot: W/sr; directional: W/m^2 on a normal plane
+  float range = 0.0f;                      // metres; 0 = infinite (KHR_lights_punctual)
+  float innerConeAngle = 0.0f;             // radians, spot only, in [0, outer)
+  float outerConeAngle = 0.7853982f;       // radians, spot only, in (0, pi/2]
 };
 
 // KHR_lights_punctual's spot falloff as scale and offset: falloff(cos) = saturate(cos * x + y)^2,
@@ -55,12 +54,12 @@ struct Camera {
   std::string name;
   glm::mat4 cameraToWorld{1.0f};  // camera looks down its local -Z, +Y up (glTF)
   bool perspective = true;
-  float yfov = 0.8f;        // radians, perspective
-  float aspectRatio = 0.0f; // width / height; 0 = take it from the viewport
-  float znear = 0.05f;      // metres, > 0
-  float zfar = 0.0f;        // metres; 0 = infinite (perspective only)
-  float xmag = 1.0f;        // orthographic half width, metres
-  float ymag = 1.0f;        // orthographic half height, metres
+  float yfov = 0.8f;         // radians, perspective
+  float aspectRatio = 0.0f;  // width / height; 0 = take it from the viewport
+  float znear = 0.05f;       // metres, > 0
+  float zfar = 0.0f;         // metres; 0 = infinite (perspective only)
+  float xmag = 1.0f;         // orthographic half width, metres
+  float ymag = 1.0f;         // orthographic half height, metres
 };
 
 struct Bounds {
@@ -75,8 +74,8 @@ struct Scene {
   // are generated as area-weighted averages of the face normals sharing a vertex position.
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
-  std::vector<glm::vec2> uvs;           // (0,0) when the mesh has no TEXCOORD_0
-  std::vector<uint32_t> indices;        // 3 per triangle, counter-clockwise front faces
+  std::vector<glm::vec2> uvs;              // (0,0) when the mesh has no TEXCOORD_0
+  std::vector<uint32_t> indices;           // 3 per triangle, counter-clockwise front faces
   std::vector<uint32_t> triangleMaterial;  // one material index per triangle
 
   std::vector<Material> materials;  // never empty: loaders add a default material when needed

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 #include "engine/scene.h"
@@ -12,8 +11,8 @@
 namespace engine {
 
 struct View {
-  glm::mat4 view{1.0f};      // world -> camera
-  glm::mat4 proj{1.0f};      // camera -> clip
+  glm::mat4 view{1.0f};  // world -> camera
+  glm::mat4 proj{1.0f};  // camera -> clip
   glm::mat4 viewProj{1.0f};
   glm::mat4 invViewProj{1.0f};
   uint32_t width = 0;

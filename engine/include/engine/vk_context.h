@@ -4,6 +4,8 @@
 // substring of the device name), else the first discrete GPU, else any conformant device.
 #pragma once
 
+#include <vulkan/vulkan.h>
+
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -11,15 +13,13 @@
 #include <string>
 #include <vector>
 
-#include <vulkan/vulkan.h>
-
 #include "engine/error.h"
 
 // Checks every VkResult, in release builds too: a failed call on a user's machine is an
 // environment problem (out of memory, lost device) that must surface as a clear error.
-#define VK_CHECK(expr)                                                        \
-  do {                                                                        \
-    VkResult vkCheckResult_ = (expr);                                         \
+#define VK_CHECK(expr)                                                               \
+  do {                                                                               \
+    VkResult vkCheckResult_ = (expr);                                                \
     if (vkCheckResult_ != VK_SUCCESS) ::engine::throwVkError(#expr, vkCheckResult_); \
   } while (0)
 

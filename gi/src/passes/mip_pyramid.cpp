@@ -9,14 +9,16 @@
 namespace gi {
 
 engine::Image createPyramid(engine::Context& ctx, uint32_t size) {
-  if (!std::has_single_bit(size)) throw engine::Error("mip pyramid: size " + std::to_string(size) + " is not a power of two");
+  if (!std::has_single_bit(size))
+    throw engine::Error("mip pyramid: size " + std::to_string(size) + " is not a power of two");
   engine::ImageDesc desc;
   desc.width = desc.height = size;
   desc.mips = static_cast<uint32_t>(std::bit_width(size));
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   engine::Image image(ctx, desc);
-  ctx.submitAndWait([&](VkCommandBuffer cmd) { engine::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_GENERAL); });
+  ctx.submitAndWait(
+      [&](VkCommandBuffer cmd) { engine::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_GENERAL); });
   return image;
 }
 
@@ -32,8 +34,11 @@ void MipPyramid::record(VkCommandBuffer cmd, engine::Image& image, engine::GpuPr
   for (uint32_t level = 1; level < desc.mips; ++level) {
     uint32_t size = std::max(1u, desc.width >> level);
     gpu::MipReducePush push{{size, size}, 0, 0};
-    program_.dispatch(cmd, {engine::Binding::storageImage(image, level - 1), engine::Binding::storageImage(image, level)},
-                      push, engine::groupCount(size, MIP_GROUP_X), engine::groupCount(size, MIP_GROUP_Y));
+    program_.dispatch(cmd,
+                      {engine::Binding::storageImage(image, level - 1),
+                       engine::Binding::storageImage(image, level)},
+                      push, engine::groupCount(size, MIP_GROUP_X),
+                      engine::groupCount(size, MIP_GROUP_Y));
     engine::computeBarrier(cmd);
   }
 }

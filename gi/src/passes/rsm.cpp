@@ -23,14 +23,16 @@ RsmView makeRsmView(const engine::Scene& scene, const engine::Light& light, uint
   if (light.type == engine::LightType::Spot) {
     if (light.outerConeAngle > kMaxRsmHalfAngle)
       throw Error("light '" + light.name + "': spot cone " + std::to_string(light.outerConeAngle) +
-                  " rad is wider than the RSM supports (" + std::to_string(kMaxRsmHalfAngle) + " rad)");
+                  " rad is wider than the RSM supports (" + std::to_string(kMaxRsmHalfAngle) +
+                  " rad)");
     r.perspective = true;
     r.origin = light.position;
     r.tanHalfAngle = std::tan(light.outerConeAngle);
     float texelSide = 2.0f * r.tanHalfAngle / texels;
     r.texelArea = texelSide * texelSide;
     engine::DepthRange range = engine::enclosingDepthRange(bounds, light.position);
-    glm::mat4 proj = engine::perspectiveVulkan(2.0f * light.outerConeAngle, 1.0f, range.znear, range.zfar);
+    glm::mat4 proj =
+        engine::perspectiveVulkan(2.0f * light.outerConeAngle, 1.0f, range.znear, range.zfar);
     glm::mat4 rotation = engine::lookAlong(glm::vec3(0.0f), r.axis, engine::upVectorFor(r.axis));
     glm::mat4 view = engine::lookAlong(light.position, r.axis, engine::upVectorFor(r.axis));
     r.view = engine::makeView(view, proj, size, size);
@@ -54,7 +56,8 @@ RsmView makeRsmView(const engine::Scene& scene, const engine::Light& light, uint
 FluxSource lightFluxSource(const engine::Light& light) {
   FluxSource source;
   source.radiance = light.color * light.intensity;
-  source.falloff = light.type == engine::LightType::Spot ? engine::spotFalloff(light) : glm::vec2(0.0f, 1.0f);
+  source.falloff =
+      light.type == engine::LightType::Spot ? engine::spotFalloff(light) : glm::vec2(0.0f, 1.0f);
   return source;
 }
 
@@ -105,7 +108,8 @@ FluxPass::FluxPass(engine::Context& ctx)
                sizeof(gpu::RsmFluxPush)) {}
 
 void FluxPass::record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmView& view,
-                      const FluxSource& source, VplImages& out, engine::GpuProfiler* profiler) const {
+                      const FluxSource& source, VplImages& out,
+                      engine::GpuProfiler* profiler) const {
   engine::ProfileScope scope(profiler, cmd, "rsm flux");
   gpu::RsmFluxPush push{};
   push.invViewProjRelative = view.invViewProjRelative;
@@ -119,7 +123,8 @@ void FluxPass::record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmVi
                     {Binding::storageImage(surface.depth), Binding::storageImage(surface.diffuse),
                      Binding::storageImage(surface.specular), Binding::storageImage(out.position),
                      Binding::storageImage(out.diffuse), Binding::storageImage(out.specular)},
-                    push, engine::groupCount(out.width, RSM_GROUP_X), engine::groupCount(out.height, RSM_GROUP_Y));
+                    push, engine::groupCount(out.width, RSM_GROUP_X),
+                    engine::groupCount(out.height, RSM_GROUP_Y));
   engine::computeBarrier(cmd);
 }
 

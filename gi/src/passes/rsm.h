@@ -14,13 +14,13 @@ namespace gi {
 // outer cone (corner texels outside the cone get zero power); directional lights: an
 // orthographic view enclosing the scene. Point lights need six views and are not supported yet.
 struct RsmView {
-  engine::View view;                  // world -> clip for the rasterizer; width = height = size
+  engine::View view;                    // world -> clip for the rasterizer; width = height = size
   glm::mat4 invViewProjRelative{1.0f};  // NDC -> offset from `origin` (no translation inside)
-  glm::vec3 origin{0.0f};             // light position (spot) or orthographic eye (directional)
-  glm::vec3 axis{0.0f, 0.0f, -1.0f};  // unit direction the light travels
+  glm::vec3 origin{0.0f};               // light position (spot) or orthographic eye (directional)
+  glm::vec3 axis{0.0f, 0.0f, -1.0f};    // unit direction the light travels
   bool perspective = true;
-  float tanHalfAngle = 0.0f;          // spot: tan of the frustum's half angle
-  float texelArea = 0.0f;             // spot: on the unit-distance plane; directional: m^2
+  float tanHalfAngle = 0.0f;  // spot: tan of the frustum's half angle
+  float texelArea = 0.0f;     // spot: on the unit-distance plane; directional: m^2
 };
 
 // Throws engine::Error for point lights and for spots wider than kMaxRsmHalfAngle.
@@ -37,8 +37,8 @@ double frustumSolidAngle(double halfAngle);
 // What the flux pass emits from: a light (colour * intensity, KHR spot falloff) or the camera's
 // importance for the view-dependent PDF (unit emission, no falloff: vsgl-math.md section 7).
 struct FluxSource {
-  glm::vec3 radiance{1.0f};              // W/sr (spot), W/m^2 (directional), 1 (importance)
-  glm::vec2 falloff{0.0f, 1.0f};         // saturate(cos * x + y)^2; (0, 1) = no falloff
+  glm::vec3 radiance{1.0f};       // W/sr (spot), W/m^2 (directional), 1 (importance)
+  glm::vec2 falloff{0.0f, 1.0f};  // saturate(cos * x + y)^2; (0, 1) = no falloff
 };
 FluxSource lightFluxSource(const engine::Light& light);
 
@@ -63,7 +63,8 @@ class FluxPass {
  public:
   explicit FluxPass(engine::Context& ctx);
   void record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmView& view,
-              const FluxSource& source, VplImages& out, engine::GpuProfiler* profiler = nullptr) const;
+              const FluxSource& source, VplImages& out,
+              engine::GpuProfiler* profiler = nullptr) const;
 
  private:
   engine::ComputeProgram program_;

@@ -28,20 +28,22 @@ void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffe
       VkClearColorValue zero{};
       VkImageSubresourceRange base{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
       engine::computeToTransferBarrier(cmd);
-      for (auto& p : pyramids_) vkCmdClearColorImage(cmd, p.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &base);
+      for (auto& p : pyramids_)
+        vkCmdClearColorImage(cmd, p.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &base);
       engine::transferToComputeBarrier(cmd);
     }
-    gpu::VsglAttributesPush push{glm::vec4(view.axis, 0.0f), {vpls.width, vpls.height},
-                                 view.perspective ? 1u : 0u, 0};
+    gpu::VsglAttributesPush push{
+        glm::vec4(view.axis, 0.0f), {vpls.width, vpls.height}, view.perspective ? 1u : 0u, 0};
     using engine::Binding;
-    program_.dispatch(cmd,
-                      {Binding::storageImage(vpls.position), Binding::storageImage(vpls.diffuse),
-                       Binding::storageImage(vpls.specular), Binding::storageImage(surface.normal),
-                       Binding::storageImage(pyramids_[0], 0), Binding::storageImage(pyramids_[1], 0),
-                       Binding::storageImage(pyramids_[2], 0), Binding::storageImage(pyramids_[3], 0),
-                       Binding::storageImage(pyramids_[4], 0), Binding::storageImage(pyramids_[5], 0)},
-                      push, engine::groupCount(vpls.width, VSGL_ATTR_GROUP_X),
-                      engine::groupCount(vpls.height, VSGL_ATTR_GROUP_Y));
+    program_.dispatch(
+        cmd,
+        {Binding::storageImage(vpls.position), Binding::storageImage(vpls.diffuse),
+         Binding::storageImage(vpls.specular), Binding::storageImage(surface.normal),
+         Binding::storageImage(pyramids_[0], 0), Binding::storageImage(pyramids_[1], 0),
+         Binding::storageImage(pyramids_[2], 0), Binding::storageImage(pyramids_[3], 0),
+         Binding::storageImage(pyramids_[4], 0), Binding::storageImage(pyramids_[5], 0)},
+        push, engine::groupCount(vpls.width, VSGL_ATTR_GROUP_X),
+        engine::groupCount(vpls.height, VSGL_ATTR_GROUP_Y));
     engine::computeBarrier(cmd);
   }
   engine::ProfileScope scope(profiler, cmd, "attribute mipmapping");

@@ -10,14 +10,15 @@ namespace gi {
 
 VsglGenerator::VsglGenerator(engine::Context& ctx, uint32_t maxCount)
     : maxCount_(maxCount),
-      program_(ctx, "vsgl_generate", kVsglGenerateSpv,
-               [] {
-                 std::vector<VkDescriptorType> types(VSGL_ATTR_COUNT,
-                                                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-                 types.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-                 return types;
-               }(),
-               sizeof(gpu::VsglGeneratePush)),
+      program_(
+          ctx, "vsgl_generate", kVsglGenerateSpv,
+          [] {
+            std::vector<VkDescriptorType> types(VSGL_ATTR_COUNT,
+                                                VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+            types.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+            return types;
+          }(),
+          sizeof(gpu::VsglGeneratePush)),
       sampler_(ctx, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       vsgls_(ctx, VkDeviceSize{maxCount} * sizeof(gpu::Vsgl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
              engine::MemoryUsage::GpuOnly) {}
@@ -28,9 +29,11 @@ void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, cons
     throw engine::Error("VSGL count " + std::to_string(settings.count) + " outside [1, " +
                         std::to_string(maxCount_) + "]");
   if (!(settings.kernelScale >= 1.0f))
-    throw engine::Error("VSGL kernel scale K = " + std::to_string(settings.kernelScale) + " must be >= 1");
+    throw engine::Error("VSGL kernel scale K = " + std::to_string(settings.kernelScale) +
+                        " must be >= 1");
   if (settings.rule != VSGL_RULE_TOK15 && settings.rule != VSGL_RULE_MODIFIED)
-    throw engine::Error("VSGL rule " + std::to_string(settings.rule) + " is neither Tok15 nor modified FIS");
+    throw engine::Error("VSGL rule " + std::to_string(settings.rule) +
+                        " is neither Tok15 nor modified FIS");
   engine::ProfileScope scope(profiler, cmd, "filtered sampling");
   const uint32_t size = attributes.pyramid(0).desc().width;
   gpu::VsglGeneratePush push{};
@@ -42,12 +45,13 @@ void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, cons
   push.kernelScale = settings.kernelScale;
   using engine::Binding;
   VkSampler s = sampler_.handle();
-  program_.dispatch(cmd,
-                    {Binding::sampled(attributes.pyramid(0), s), Binding::sampled(attributes.pyramid(1), s),
-                     Binding::sampled(attributes.pyramid(2), s), Binding::sampled(attributes.pyramid(3), s),
-                     Binding::sampled(attributes.pyramid(4), s), Binding::sampled(attributes.pyramid(5), s),
-                     Binding::storage(vsgls_)},
-                    push, engine::groupCount(settings.count, VSGL_GENERATE_GROUP));
+  program_.dispatch(
+      cmd,
+      {Binding::sampled(attributes.pyramid(0), s), Binding::sampled(attributes.pyramid(1), s),
+       Binding::sampled(attributes.pyramid(2), s), Binding::sampled(attributes.pyramid(3), s),
+       Binding::sampled(attributes.pyramid(4), s), Binding::sampled(attributes.pyramid(5), s),
+       Binding::storage(vsgls_)},
+      push, engine::groupCount(settings.count, VSGL_GENERATE_GROUP));
   engine::computeBarrier(cmd);
 }
 

@@ -8,9 +8,9 @@
 namespace gi {
 
 struct VsglSettings {
-  uint32_t count = 1024;             // N, [1, maxCount] VSGLs; cost ~ N (generation and shading)
-  float kernelScale = 1.0f;          // K, [1, N]: kernels hold K/N of the PDF; larger = blurrier
-                                     // and temporally steadier (paper: 1)
+  uint32_t count = 1024;               // N, [1, maxCount] VSGLs; cost ~ N (generation and shading)
+  float kernelScale = 1.0f;            // K, [1, N]: kernels hold K/N of the PDF; larger = blurrier
+                                       // and temporally steadier (paper: 1)
   uint32_t rule = VSGL_RULE_MODIFIED;  // VSGL_RULE_TOK15 or VSGL_RULE_MODIFIED (+~0 cost)
 };
 

@@ -3,13 +3,13 @@
 // reductions approximate.
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace gi {
 
 // levels[0] = `base` (size x size, row-major), levels[l] = (size >> l)^2 exact means.
-std::vector<std::vector<glm::dvec4>> mipReference(const std::vector<glm::dvec4>& base, uint32_t size);
+std::vector<std::vector<glm::dvec4>> mipReference(const std::vector<glm::dvec4>& base,
+                                                  uint32_t size);
 
 }  // namespace gi

@@ -6,7 +6,9 @@
 namespace gi {
 namespace {
 
-double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+double luminance(const glm::dvec3& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
 
 }  // namespace
 

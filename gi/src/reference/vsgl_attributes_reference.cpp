@@ -8,7 +8,9 @@
 namespace gi {
 namespace {
 
-double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+double luminance(const glm::dvec3& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
 
 bool finite(const glm::vec4& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
@@ -17,7 +19,7 @@ bool finite(const glm::vec4& v) {
 }  // namespace
 
 std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(const RsmImages& rsm,
-                                                                            const RsmView& view) {
+                                                                             const RsmView& view) {
   std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> out;
   for (auto& a : out) a.assign(rsm.position.size(), glm::dvec4(0.0));
   for (size_t i = 0; i < rsm.position.size(); ++i) {

@@ -19,6 +19,6 @@ struct RsmImages {
 };
 
 std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(const RsmImages& rsm,
-                                                                            const RsmView& view);
+                                                                             const RsmView& view);
 
 }  // namespace gi
