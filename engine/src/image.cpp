@@ -153,6 +153,15 @@ std::vector<std::byte> Image::readback(Context& ctx, uint32_t level) {
   return out;
 }
 
+std::vector<glm::vec4> Image::readbackRgba32f(Context& ctx, uint32_t level) {
+  if (desc_.format != VK_FORMAT_R32G32B32A32_SFLOAT)
+    throw Error("Image::readbackRgba32f: the image is not R32G32B32A32_SFLOAT");
+  auto bytes = readback(ctx, level);
+  std::vector<glm::vec4> texels(bytes.size() / sizeof(glm::vec4));
+  std::memcpy(texels.data(), bytes.data(), bytes.size());
+  return texels;
+}
+
 Sampler::Sampler(Context& ctx, VkSamplerAddressMode address) : device_(ctx.device()) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = VK_FILTER_LINEAR;

@@ -13,10 +13,6 @@
 namespace engine {
 namespace {
 
-float srgbToLinear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 // One texture as float RGBA in linear space, resampled to size x size (OpenImageIO's resize
 // picks a filter suited to the scale factor).
 std::vector<float> resampleLinear(const Texture& t, bool srgb, int size) {

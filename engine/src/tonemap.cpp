@@ -67,6 +67,10 @@ float acesFilmic(float x) {
 }
 
 // IEC 61966-2-1:1999 (sRGB), section 5.2: linear segment below the knee, 1/2.4 power above.
+float srgbToLinear(float x) {
+  return x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
+}
+
 float linearToSrgb(float x) {
   x = std::clamp(x, 0.0f, 1.0f);
   if (x <= kSrgbLinearKnee) return kSrgbLinearSlope * x;

@@ -37,12 +37,6 @@ engine::Scene loadScene(const std::string& name) {
   return engine::loadGltf(name);
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 int listDevices() {
   for (const auto& d : engine::Context::listDevices())
     std::printf("%u: %s (%s, Vulkan %s)%s%s\n", d.index, d.name.c_str(), d.driver.c_str(),
@@ -117,15 +111,14 @@ int run(const render::Options& o) {
 
   std::printf("GPU time per pass, median of %u frames (ms):\n", o.frames);
   for (const auto& name : passOrder)
-    std::printf("  %-18s %9.3f\n", name.c_str(), median(passTimes[name]));
-  std::printf("  %-18s %9.3f\n", "frame total", median(frameTimes));
+    std::printf("  %-18s %9.3f\n", name.c_str(), engine::median(passTimes[name]));
+  std::printf("  %-18s %9.3f\n", "frame total", engine::median(frameTimes));
 
-  auto bytes = radiance.readback(ctx);
+  std::vector<glm::vec4> texels = radiance.readbackRgba32f(ctx);
   engine::ImageRgba32f image;
   image.width = static_cast<int>(o.width);
   image.height = static_cast<int>(o.height);
-  image.pixels.resize(bytes.size() / sizeof(float));
-  std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
+  image.pixels.assign(&texels.data()->x, &texels.data()->x + 4 * texels.size());
   std::string base = (std::filesystem::path(o.outDir) / stem).string();
   // Built-in scenes exist only as code; a .gltf copy lets other tools open the same scene.
   if (isBuiltin(o.scene)) engine::writeGltf(scene, base + ".gltf");

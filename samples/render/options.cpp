@@ -1,36 +1,15 @@
 #include "options.h"
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <string_view>
 
+#include "cli_values.h"
 #include "engine/error.h"
 
 namespace render {
-namespace {
 
-uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi) {
-  uint32_t value = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || value < lo || value > hi)
-    throw engine::Error(std::string(option) + ": expected an integer in [" + std::to_string(lo) +
-                        ", " + std::to_string(hi) + "], got '" + std::string(text) + "'");
-  return value;
-}
-
-float parseFloat(std::string_view option, std::string_view text, float lo, float hi) {
-  std::string s(text);
-  char* end = nullptr;
-  float value = std::strtof(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(value) || value < lo || value > hi)
-    throw engine::Error(std::string(option) + ": expected a number in [" + std::to_string(lo) +
-                        ", " + std::to_string(hi) + "], got '" + s + "'");
-  return value;
-}
-
-}  // namespace
-
+using samples::parseFloat;
+using samples::parseUint;
 const char* usage() {
   return "usage: vsgl_render [options]\n"
          "  --scene NAME|FILE    built-in scene (cornell, atrium, checker) or .gltf/.glb (default "

@@ -6,7 +6,6 @@
 // than once (gi/src/reference/fis_coverage.h).
 #include <algorithm>
 #include <bit>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cli_values.h"
 #include "engine/builtin_scenes.h"
 #include "engine/error.h"
 #include "engine/image_io.h"
@@ -53,24 +53,6 @@ const char* usage() {
          "  --validation   enable the Khronos validation layer (any message fails the run)\n";
 }
 
-uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi) {
-  uint32_t value = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || value < lo || value > hi)
-    throw Error(std::string(option) + ": expected an integer in [" + std::to_string(lo) + ", " +
-                std::to_string(hi) + "], got '" + std::string(text) + "'");
-  return value;
-}
-
-float parseFloat(std::string_view option, std::string_view text) {
-  std::string s(text);
-  char* end = nullptr;
-  const float value = std::strtof(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(value))
-    throw Error(std::string(option) + ": expected a number, got '" + s + "'");
-  return value;
-}
-
 Options parseOptions(int argc, char** argv) {
   Options o;
   std::string_view kText = "1";  // as typed, for the range check once N is known
@@ -85,13 +67,13 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--out")
       o.outDir = value();
     else if (arg == "--rsm")
-      o.rsmSize = parseUint(arg, value(), 16, 2048);
+      o.rsmSize = samples::parseUint(arg, value(), 16, 2048);
     else if (arg == "--count")
-      o.count = parseUint(arg, value(), 1, 65536);
+      o.count = samples::parseUint(arg, value(), 1, 65536);
     else if (arg == "--k")
-      o.kernelScale = parseFloat(arg, kText = value());
+      o.kernelScale = samples::parseFloat(arg, kText = value(), 1.0f, 65536.0f);
     else if (arg == "--frames")
-      o.frames = parseUint(arg, value(), 1, 100);
+      o.frames = samples::parseUint(arg, value(), 1, 100);
     else if (arg == "--device")
       o.device = value();
     else if (arg == "--validation")
@@ -192,13 +174,6 @@ struct RuleRun {
   std::vector<glm::dvec3> kernels;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty()
-             ? 0.0
-             : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
-}
-
 // GPU time of the final-step passes in the structure of [S3] Table 1 (lower row): additional
 // RSM (flux + attributes), mipmapping, filtered sampling; the rules alternate frame by frame so
 // that drift on a shared machine hits both alike. The RSM rasterisation is reported apart (the
@@ -226,7 +201,7 @@ void printTimings(engine::Context& ctx, const Options& o, const engine::SceneGpu
   std::printf("GPU time per pass, median of %u frames (ms)      Tok15   modified\n", o.frames);
   double total[2] = {0.0, 0.0};
   for (const char* pass : passes) {
-    double t[2] = {median(times[0][pass]), median(times[1][pass])};
+    double t[2] = {engine::median(times[0][pass]), engine::median(times[1][pass])};
     std::printf("  %-42s %8.3f %8.3f\n", pass, t[0], t[1]);
     if (std::string(pass) != "rsm raster")
       for (int r = 0; r < 2; ++r) total[r] += t[r];
@@ -266,9 +241,8 @@ int run(const Options& o) {
   });
 
   // The PDF the generator warps: alpha of the diffuse-axis pyramid (shared/vsgl_attributes.h).
-  auto bytes = attributes.pyramid(VSGL_ATTR_DIFFUSE_AXIS).readback(ctx, 0);
-  std::vector<glm::vec4> texels(bytes.size() / sizeof(glm::vec4));
-  std::memcpy(texels.data(), bytes.data(), bytes.size());
+  const std::vector<glm::vec4> texels =
+      attributes.pyramid(VSGL_ATTR_DIFFUSE_AXIS).readbackRgba32f(ctx, 0);
   std::vector<double> pdfBase;
   for (const glm::vec4& t : texels) pdfBase.push_back(t.w);
   const gi::ScalarPyramid pdf = gi::makeScalarPyramid(pdfBase, o.rsmSize);

@@ -5,6 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/rsm_flux.h"
+#include "common/color.glsl"
 #include "common/camera_ray.glsl"
 
 layout(local_size_x = RSM_GROUP_X, local_size_y = RSM_GROUP_Y) in;
@@ -16,8 +17,6 @@ layout(binding = 3, rgba32f) uniform writeonly image2D outPosition;
 layout(binding = 4, rgba32f) uniform writeonly image2D outDiffuse;
 layout(binding = 5, rgba32f) uniform writeonly image2D outSpecular;
 layout(push_constant) uniform Push { RsmFluxPush pc; };
-
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 void main() {
   uvec2 texel = gl_GlobalInvocationID.xy;

@@ -8,6 +8,7 @@
 #include "shared/vsgl.h"
 #include "shared/vsgl_attributes.h"
 #include "shared/vsgl_attributes_pass.h"
+#include "common/color.glsl"
 #include "common/octahedral.glsl"
 #include "common/vsgl_lobes.glsl"
 
@@ -25,8 +26,6 @@ layout(binding = 4 + VSGL_ATTR_SPECULAR_POWER, rgba32f) uniform writeonly image2
 layout(binding = 4 + VSGL_ATTR_SPECULAR_POSITION, rgba32f) uniform writeonly image2D outSpecularPosition;
 layout(binding = 4 + VSGL_ATTR_SPECULAR_AXIS, rgba32f) uniform writeonly image2D outSpecularAxis;
 layout(push_constant) uniform Push { VsglAttributesPush pc; };
-
-float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 

@@ -144,7 +144,9 @@ void main() {
   float density = pTop > 0.0 ? pdfTexel(node, 0) / pTop : 0.0;
   bool modified = pc.rule == VSGL_RULE_MODIFIED;
   float level = modified ? modifiedFisLevel(x, pTop) : tok15Level(density);
-  float filtered = pTop > 0.0 ? trilinear(diffuseAxis, x, level).w / pTop : 0.0;
+  // The diffuse axis sums carry the PDF in alpha: one filtered fetch serves both.
+  vec4 diffuseAxisSums = trilinear(diffuseAxis, x, level);
+  float filtered = pTop > 0.0 ? diffuseAxisSums.w / pTop : 0.0;
   // Cluster sums from per-texel means (vsgl-math.md 5.3 units trap): modified FIS scales the
   // kernel to mass 1/N, M / (N p~); Tok15 divides by the unfiltered density, M / max(N p, 1).
   float m = size * size;
@@ -154,7 +156,7 @@ void main() {
   Vsgl v;
   v.diffuse = buildLobe(scale * trilinear(diffusePower, x, level),
                         scale * trilinear(diffusePosition, x, level),
-                        scale * trilinear(diffuseAxis, x, level));
+                        scale * diffuseAxisSums);
   v.specular = buildLobe(scale * trilinear(specularPower, x, level),
                          scale * trilinear(specularPosition, x, level),
                          scale * trilinear(specularAxis, x, level));

@@ -61,8 +61,8 @@ void main() {
   float depth = uintBitsToFloat(uint(vis >> 32));
   uint tri = uint(vis & 0xFFFFFFFFul);
 
-  // Members are read one by one: copying whole structs out of a buffer into locals is
-  // markedly slower on lavapipe.
+  // Members are read one by one, as in direct_light.comp, where copying whole structs out of a
+  // buffer measured ~15 % slower on lavapipe (docs/performance.md).
   uint i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
   vec4 pA = vertices[i0].positionU, pB = vertices[i1].positionU, pC = vertices[i2].positionU;
   vec4 nA = vertices[i0].normalV, nB = vertices[i1].normalV, nC = vertices[i2].normalV;
@@ -70,7 +70,9 @@ void main() {
   vec2 uvA = vec2(pA.w, nA.w), uvB = vec2(pB.w, nB.w), uvC = vec2(pC.w, nC.w);
 
   vec2 centre = vec2(pixel) + 0.5;
-  vec2 bc = rayBarycentrics(centre, a, b, c);
+  vec3 origin, dir;
+  cameraRay(pc.invViewProj, pixelToNdc(centre, pc.viewport), origin, dir);
+  vec2 bc = planeBarycentrics(origin, dir, a, b, c);
   vec2 bcX = rayBarycentrics(centre + vec2(1.0, 0.0), a, b, c);
   vec2 bcY = rayBarycentrics(centre + vec2(0.0, 1.0), a, b, c);
   vec2 duvA = uvB - uvA, duvB = uvC - uvA;
@@ -81,8 +83,6 @@ void main() {
   vec3 normal = normalize(nA.xyz * (1.0 - bc.x - bc.y) + nB.xyz * bc.x + nC.xyz * bc.y);
   // Two-sided shading: a surface seen from behind is lit as its front, so flip the normal
   // toward the viewer using the geometric normal (interpolated normals can disagree).
-  vec3 origin, dir;
-  cameraRay(pc.invViewProj, pixelToNdc(centre, pc.viewport), origin, dir);
   if (dot(cross(b - a, c - a), dir) > 0.0) normal = -normal;
 
   uint material = triangleMaterial[tri];

@@ -1,7 +1,5 @@
 #include "gpu_fixture.h"
 
-#include <cstring>
-
 namespace testing_gpu {
 namespace {
 
@@ -27,13 +25,6 @@ Shared& shared() {
 }
 
 }  // namespace
-
-std::vector<glm::vec4> readRgba32f(engine::Context& ctx, engine::Image& image, uint32_t level) {
-  auto bytes = image.readback(ctx, level);
-  std::vector<glm::vec4> out(bytes.size() / sizeof(glm::vec4));
-  std::memcpy(out.data(), bytes.data(), bytes.size());
-  return out;
-}
 
 engine::Context* GpuTest::context() {
   return shared().context.get();

@@ -5,17 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 
-#include "engine/image.h"
 #include "engine/vk_context.h"
 
 namespace testing_gpu {
-
-// One mip level of an RGBA32F image, read back (blocking).
-std::vector<glm::vec4> readRgba32f(engine::Context& ctx, engine::Image& image, uint32_t level = 0);
 
 class GpuTest : public ::testing::Test {
  protected:

@@ -44,7 +44,7 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
   // Flux pass against its twin, as for light RSMs (tolerances of Rsm.FluxMatchesReference).
   engine::GBufferData surface = engine::readbackGBuffer(ctx(), gbuffer);
   auto ref = gi::rsmFluxReference(surface, importance, unitImportance);
-  auto diffuse = testing_gpu::readRgba32f(ctx(), vpls.diffuse, 0);
+  auto diffuse = vpls.diffuse.readbackRgba32f(ctx(), 0);
   double solidAngle = 0.0, largest = 0.0;
   for (const auto& t : ref) largest = std::max(largest, t.incident.g);
   for (size_t i = 0; i < ref.size(); ++i) {
@@ -65,7 +65,7 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
 
   // Padding: zero everywhere outside the image in every level-0 attribute.
   for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
-    auto base = testing_gpu::readRgba32f(ctx(), attributes.pyramid(a), 0);
+    auto base = attributes.pyramid(a).readbackRgba32f(ctx(), 0);
     for (uint32_t y = 0; y < pyramidSize; ++y)
       for (uint32_t x = 0; x < pyramidSize; ++x)
         if (x >= width || y >= height) {

@@ -30,10 +30,7 @@ class MipPyramidTest : public testing_gpu::GpuTest {
     });
     std::vector<std::vector<glm::vec4>> levels;
     for (uint32_t level = 0; level < pyramid.desc().mips; ++level) {
-      auto bytes = pyramid.readback(ctx(), level);
-      std::vector<glm::vec4> v(bytes.size() / sizeof(glm::vec4));
-      std::memcpy(v.data(), bytes.data(), bytes.size());
-      levels.push_back(std::move(v));
+      levels.push_back(pyramid.readbackRgba32f(ctx(), level));
     }
     return levels;
   }

@@ -41,10 +41,8 @@ GpuRsm renderRsm(engine::Context& ctx, const engine::Scene& scene, const engine:
   gi::ReflectiveShadowMap rsm(ctx, size);
   ctx.submitAndWait(
       [&](VkCommandBuffer cmd) { rsm.record(cmd, gpuScene, rasterizer, resolve, view, light); });
-  return {engine::readbackGBuffer(ctx, rsm.surface()),
-          testing_gpu::readRgba32f(ctx, rsm.position()),
-          testing_gpu::readRgba32f(ctx, rsm.diffuseFlux()),
-          testing_gpu::readRgba32f(ctx, rsm.specularFlux())};
+  return {engine::readbackGBuffer(ctx, rsm.surface()), rsm.position().readbackRgba32f(ctx),
+          rsm.diffuseFlux().readbackRgba32f(ctx), rsm.specularFlux().readbackRgba32f(ctx)};
 }
 
 double maxLuminance(const std::vector<gi::RsmTexelReference>& ref) {

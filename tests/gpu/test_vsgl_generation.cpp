@@ -56,18 +56,16 @@ TEST_F(VsglAttributesTest, TopLevelTimesTexelCountConservesRsmPower) {
   // The 1x1 level is the mean of all texels: times M it must give back the RSM's total
   // reflected power, within the pyramid's fp32 bound 2 L u (L = 6 levels) = 7.2e-7 relative.
   buildAttributes();
-  auto diffuse = testing_gpu::readRgba32f(ctx(), rsm_->diffuseFlux(), 0);
-  auto specular = testing_gpu::readRgba32f(ctx(), rsm_->specularFlux(), 0);
+  auto diffuse = rsm_->diffuseFlux().readbackRgba32f(ctx(), 0);
+  auto specular = rsm_->specularFlux().readbackRgba32f(ctx(), 0);
   glm::dvec3 totalDiffuse(0.0), totalSpecular(0.0);
   for (size_t i = 0; i < diffuse.size(); ++i) {
     totalDiffuse += glm::dvec3(diffuse[i]);
     totalSpecular += glm::dvec3(specular[i]);
   }
   const double m = double(kSize) * kSize, bound = 2.0 * 6.0 * std::ldexp(1.0, -24);
-  auto topDiffuse =
-      testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER), 6).at(0);
-  auto topSpecular =
-      testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_SPECULAR_POWER), 6).at(0);
+  auto topDiffuse = attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER).readbackRgba32f(ctx(), 6).at(0);
+  auto topSpecular = attributes_->pyramid(VSGL_ATTR_SPECULAR_POWER).readbackRgba32f(ctx(), 6).at(0);
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(topDiffuse[k] * m, totalDiffuse[k], bound * totalDiffuse[k]) << "channel " << k;
     EXPECT_NEAR(topSpecular[k] * m, totalSpecular[k], bound * totalSpecular[k]) << "channel " << k;
@@ -78,9 +76,9 @@ TEST_F(VsglAttributesTest, TopLevelTimesTexelCountConservesRsmPower) {
 
 TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
   buildAttributes();
-  gi::RsmImages rsm{testing_gpu::readRgba32f(ctx(), rsm_->position(), 0),
-                    testing_gpu::readRgba32f(ctx(), rsm_->diffuseFlux(), 0),
-                    testing_gpu::readRgba32f(ctx(), rsm_->specularFlux(), 0),
+  gi::RsmImages rsm{rsm_->position().readbackRgba32f(ctx(), 0),
+                    rsm_->diffuseFlux().readbackRgba32f(ctx(), 0),
+                    rsm_->specularFlux().readbackRgba32f(ctx(), 0),
                     engine::readbackGBuffer(ctx(), rsm_->surface())};
   auto ref = gi::vsglAttributesReference(rsm, view_);
   // fp32 products of a handful of roundings against double: 1e-5 relative per channel, with an
@@ -89,7 +87,7 @@ TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
   // of the mean length for sharp lobes, see vsgl_lobes.glsl), so it gets 1e-4.
   for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
     SCOPED_TRACE("attribute " + std::to_string(a));
-    auto gpu = testing_gpu::readRgba32f(ctx(), attributes_->pyramid(a), 0);
+    auto gpu = attributes_->pyramid(a).readbackRgba32f(ctx(), 0);
     double largest = 0.0;
     for (const auto& v : ref[a])
       for (int k = 0; k < 4; ++k) largest = std::max(largest, std::abs(v[k]));
@@ -104,8 +102,8 @@ TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
 TEST_F(VsglAttributesTest, ANonFiniteTexelDoesNotPoisonThePyramid) {
   // Inject a NaN and an Inf into two lit RSM texels: they must contribute zero, and every level
   // of every pyramid must stay finite (vsgl-math.md section 12, case 14).
-  auto diffuse = testing_gpu::readRgba32f(ctx(), rsm_->diffuseFlux(), 0);
-  auto position = testing_gpu::readRgba32f(ctx(), rsm_->position(), 0);
+  auto diffuse = rsm_->diffuseFlux().readbackRgba32f(ctx(), 0);
+  auto position = rsm_->position().readbackRgba32f(ctx(), 0);
   std::vector<size_t> lit;
   for (size_t i = 0; i < position.size() && lit.size() < 2; ++i)
     if (position[i].w > 0.0f) lit.push_back(i);
@@ -120,11 +118,11 @@ TEST_F(VsglAttributesTest, ANonFiniteTexelDoesNotPoisonThePyramid) {
   });
   buildAttributes();
   for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
-    auto base = testing_gpu::readRgba32f(ctx(), attributes_->pyramid(a), 0);
+    auto base = attributes_->pyramid(a).readbackRgba32f(ctx(), 0);
     EXPECT_EQ(base[lit[0]], glm::vec4(0.0f)) << "attribute " << a;
     EXPECT_EQ(base[lit[1]], glm::vec4(0.0f)) << "attribute " << a;
     for (uint32_t level = 0; level < attributes_->pyramid(a).desc().mips; ++level)
-      for (const glm::vec4& v : testing_gpu::readRgba32f(ctx(), attributes_->pyramid(a), level))
+      for (const glm::vec4& v : attributes_->pyramid(a).readbackRgba32f(ctx(), level))
         ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
                     std::isfinite(v.w))
             << "attribute " << a << " level " << level;
@@ -144,7 +142,7 @@ TEST_F(VsglAttributesTest, GeneratedVsglsMatchReferenceForBothRules) {
   std::array<gi::VectorPyramid, VSGL_ATTR_COUNT> pyramids;
   std::vector<double> pdfBase;
   for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
-    auto base = testing_gpu::readRgba32f(ctx(), attributes_->pyramid(a), 0);
+    auto base = attributes_->pyramid(a).readbackRgba32f(ctx(), 0);
     std::vector<glm::dvec4> wide(base.begin(), base.end());
     if (a == VSGL_ATTR_DIFFUSE_AXIS)
       for (const glm::dvec4& v : wide) pdfBase.push_back(v.w);
@@ -197,8 +195,7 @@ TEST_F(VsglAttributesTest, ModifiedFisConservesTheRsmPower) {
   // 2 % of the total for a PDF proportional to power (the energy test), and with
   // K >= N every VSGL holds exactly total / N.
   buildAttributes();
-  auto top =
-      testing_gpu::readRgba32f(ctx(), attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER), 6).at(0);
+  auto top = attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER).readbackRgba32f(ctx(), 6).at(0);
   const double total = double(top.g) * kSize * kSize;
   gi::VsglGenerator generator(ctx(), 1024);
   for (uint32_t n : {64u, 256u, 1024u}) {

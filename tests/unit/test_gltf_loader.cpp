@@ -17,6 +17,7 @@
 #include "engine/error.h"
 #include "engine/gltf.h"
 #include "engine/scene.h"
+#include "test_files.h"
 
 namespace {
 
@@ -49,16 +50,8 @@ class TempDir {
   fs::path path_;
 };
 
-std::vector<uint8_t> readBytes(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
-void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream file(path, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
-}
+using test_files::readBytes;
+using test_files::writeBytes;
 
 std::string readText(const fs::path& path) {
   const std::vector<uint8_t> bytes = readBytes(path);

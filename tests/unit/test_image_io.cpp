@@ -11,6 +11,7 @@
 
 #include "engine/error.h"
 #include "engine/image_io.h"
+#include "test_files.h"
 
 namespace {
 
@@ -22,16 +23,8 @@ namespace fs = std::filesystem;
 //   solid.jpg   16x8 RGB (200, 100, 50), quality 95
 const fs::path kImageData = fs::path(VSGL_TEST_DATA) / "images";
 
-std::vector<uint8_t> readBytes(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-}
-
-void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream file(path, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
-}
+using test_files::readBytes;
+using test_files::writeBytes;
 
 // Deterministic bytes that deflate cannot shrink, so a PNG of them has a long IDAT to truncate.
 std::vector<uint8_t> noiseRgba(int width, int height) {

@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "reference/rsm_reference.h"
 #include "reference/vsgl_sampling.h"
 
 namespace gi {
@@ -33,10 +34,6 @@ class Lcg {
  private:
   uint64_t state_;
 };
-
-double luminance(glm::dvec3 rgb) {
-  return glm::dot(rgb, glm::dvec3(0.2126, 0.7152, 0.0722));
-}
 
 // A 16x16 PDF with a 1:50 range that varies in both directions.
 std::vector<double> wavyPdf(uint32_t size) {
@@ -608,7 +605,7 @@ SyntheticRsm syntheticRsm(uint32_t size) {
       const glm::dvec3 diffuse = incident * glm::dvec3(0.2 + 0.6 * s, 0.5, 0.8 - 0.6 * t);
       const glm::dvec3 specular = incident * glm::dvec3(0.04 + 0.5 * t, 0.04 + 0.3 * s, 0.04);
       const SgLobe lobe = specularLobe(n, glm::normalize(-y), 0.2 + 0.6 * s * t);
-      const double wd = luminance(diffuse), ws = luminance(specular);
+      const double wd = gi::luminance709(diffuse), ws = gi::luminance709(specular);
       const size_t k = size_t{j} * size + i;
       base[VSGL_ATTR_DIFFUSE_POWER][k] = glm::dvec4(diffuse, wd);
       base[VSGL_ATTR_DIFFUSE_POSITION][k] = wd * glm::dvec4(y, glm::dot(y, y));

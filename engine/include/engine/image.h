@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <vector>
 
 #include "engine/vk_context.h"
@@ -44,6 +45,8 @@ class Image {
   // Copies one mip level of every layer back, tightly packed (blocking; tests and tools). The
   // image is returned to the layout it had.
   std::vector<std::byte> readback(Context& ctx, uint32_t level = 0);
+  // The same for R32G32B32A32_SFLOAT images, as vec4 texels (throws for any other format).
+  std::vector<glm::vec4> readbackRgba32f(Context& ctx, uint32_t level = 0);
 
   static size_t texelBytes(VkFormat format);
 

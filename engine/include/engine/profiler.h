@@ -38,6 +38,9 @@ class GpuProfiler {
   double nsPerTick_;
 };
 
+// Median of per-frame pass times (the even-count median is the mean of the middle two); 0 if empty.
+double median(std::vector<double> values);
+
 // Times the enclosing block as one named pass; a null profiler makes it free.
 class ProfileScope {
  public:

@@ -25,6 +25,9 @@ float acesFilmic(float x);
 // Linear [0,1] -> sRGB-encoded [0,1] (IEC 61966-2-1).
 float linearToSrgb(float x);
 
+// sRGB-encoded [0,1] -> linear [0,1], the inverse of linearToSrgb.
+float srgbToLinear(float x);
+
 // Full display transform to 8-bit sRGB RGBA, alpha = 255. NaN/Inf pixels become magenta so
 // they are impossible to miss.
 std::vector<uint8_t> toneMap(const ImageRgba32f& image, const ToneMapSettings& settings);

@@ -4,13 +4,9 @@
 #include <cmath>
 
 namespace gi {
-namespace {
-
-double luminance(const glm::dvec3& c) {
+double luminance709(const glm::dvec3& c) {
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
 }
-
-}  // namespace
 
 std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surface,
                                                 const RsmView& view, const FluxSource& source) {
@@ -35,7 +31,7 @@ std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surfa
       } else {
         t.incident = radiance * texelArea;
       }
-      t.lit = luminance(t.incident) > 0.0 ? 1.0 : 0.0;
+      t.lit = luminance709(t.incident) > 0.0 ? 1.0 : 0.0;
       t.offset = offset * t.lit;
       t.diffuseFlux = s.diffuse * t.incident;
       t.specularFlux = s.f0 * t.incident;

@@ -20,6 +20,9 @@ struct RsmTexelReference {
   double roughness = 0.0;        // perceptual (0 when unlit)
 };
 
+// Rec. 709 luminance, the scalar weight of RGB powers (shaders/common/color.glsl).
+double luminance709(const glm::dvec3& c);
+
 std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surface,
                                                 const RsmView& view, const FluxSource& source);
 

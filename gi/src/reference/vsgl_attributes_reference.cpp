@@ -2,15 +2,12 @@
 
 #include <cmath>
 
+#include "reference/rsm_reference.h"
 #include "reference/vsgl_sampling.h"
 #include "shared/vsgl.h"
 
 namespace gi {
 namespace {
-
-double luminance(const glm::dvec3& c) {
-  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-}
 
 bool finite(const glm::vec4& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
@@ -27,7 +24,7 @@ std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(con
     if (!(p.w > 0.0f && finite(p) && finite(d) && finite(s))) continue;
     const glm::dvec3 y(p), n = rsm.surface.samples[i].normal;
     const glm::dvec3 toLight = view.perspective ? -glm::normalize(y) : -glm::dvec3(view.axis);
-    const double wd = luminance(glm::dvec3(d)), ws = luminance(glm::dvec3(s));
+    const double wd = luminance709(glm::dvec3(d)), ws = luminance709(glm::dvec3(s));
     const SgLobe lobe = specularLobe(n, toLight, static_cast<double>(s.a));
     const double rs = banerjeeMeanLength(lobe.sharpness);
     const double yy = glm::dot(y, y);
