@@ -31,24 +31,6 @@ constexpr const char* kLightsExtension = "KHR_lights_punctual";
 constexpr std::string_view kUnderstoodExtensions[] = {"KHR_lights_punctual",
                                                       "KHR_materials_emissive_strength"};
 
-// tinygltf reports several problems as newline-separated lines; our errors are one line.
-std::string oneLine(const std::string& text) {
-  std::string out;
-  bool pendingSeparator = false;
-  for (char c : text) {
-    if (c == '\n' || c == '\r') {
-      pendingSeparator = !out.empty();
-      continue;
-    }
-    if (pendingSeparator) {
-      out += "; ";
-      pendingSeparator = false;
-    }
-    out += c;
-  }
-  return out;
-}
-
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -104,7 +86,7 @@ bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err,
     decoder.textures[slot] = std::move(texture);
     return true;
   } catch (const std::exception& e) {
-    if (decoder.error.empty()) decoder.error = label + ": " + oneLine(e.what());
+    if (decoder.error.empty()) decoder.error = label + ": " + joinLines(e.what());
     if (err != nullptr) *err += decoder.error + "\n";
     return false;
   }
@@ -278,11 +260,11 @@ Scene loadGltf(const std::string& path) {
                        : parser.LoadASCIIFromFile(&model, &err, &warn, path);
   } catch (const std::exception& e) {
     // tinygltf reports JSON syntax errors in `err`; this catches anything else it throws.
-    throw Error(path + ": malformed glTF: " + oneLine(e.what()));
+    throw Error(path + ": malformed glTF: " + joinLines(e.what()));
   }
   if (!decoder.error.empty()) throw Error(path + ": " + decoder.error);
   if (!ok) {
-    const std::string reason = oneLine(err.empty() ? warn : err);
+    const std::string reason = joinLines(err.empty() ? warn : err);
     throw Error(path + ": " + (reason.empty() ? "cannot parse glTF" : reason));
   }
   // tinygltf only warns when an external image file is missing or unreadable.

@@ -22,22 +22,10 @@ namespace {
 // (16384^2) is far beyond any texture or output this module handles.
 constexpr uint64_t kMaxPixels = uint64_t{1} << 28;
 
-// OpenImageIO reports errors as several lines (plugin message, then library message); engine
-// errors are one line, so the lines are joined with "; ".
-std::string oneLine(const std::string& message) {
-  std::string result;
-  bool pendingBreak = false;
-  for (char c : message) {
-    if (c == '\n' || c == '\r') {
-      pendingBreak = !result.empty();
-      continue;
-    }
-    if (pendingBreak) {
-      result += "; ";
-      pendingBreak = false;
-    }
-    result += c;
-  }
+// OpenImageIO reports errors as several lines (plugin message, then library message), and
+// sometimes none at all; engine errors are exactly one line.
+std::string oiioMessage(const std::string& message) {
+  std::string result = joinLines(message);
   return result.empty() ? std::string("unknown OpenImageIO error") : result;
 }
 
@@ -91,11 +79,11 @@ void writeAtomically(const std::string& path, const char* format, const OIIO::Im
                      OIIO::TypeDesc dataType, const void* data) {
   TempFile temp(path);
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format);
-  if (!out) throw Error(path + ": " + oneLine(OIIO::geterror()));
-  if (!out->open(temp.path(), spec)) throw Error(path + ": " + oneLine(out->geterror()));
+  if (!out) throw Error(path + ": " + oiioMessage(OIIO::geterror()));
+  if (!out->open(temp.path(), spec)) throw Error(path + ": " + oiioMessage(out->geterror()));
   const bool written = out->write_image(dataType, data);
   // close() flushes the encoder, so its failure is a write failure too.
-  if (!out->close() || !written) throw Error(path + ": " + oneLine(out->geterror()));
+  if (!out->close() || !written) throw Error(path + ": " + oiioMessage(out->geterror()));
   temp.commit();
 }
 
@@ -118,7 +106,7 @@ std::vector<T> readRgba(OIIO::ImageInput& in, const std::string& name, T opaque,
   const int channels = std::min(spec.nchannels, 4);
   std::vector<T> source(pixelCount * static_cast<uint64_t>(channels));
   if (!in.read_image(0, 0, 0, channels, OIIO::BaseTypeFromC<T>::value, source.data())) {
-    throw Error(name + ": " + oneLine(in.geterror()));
+    throw Error(name + ": " + oiioMessage(in.geterror()));
   }
 
   std::vector<T> rgba(pixelCount * 4);
@@ -206,7 +194,7 @@ ImageRgba32f readImage(const std::string& path) {
   requireRegularFile(path);
   const OIIO::ImageSpec config = straightAlphaConfig();
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
-  if (!in) throw Error(path + ": " + oneLine(OIIO::geterror()));
+  if (!in) throw Error(path + ": " + oiioMessage(OIIO::geterror()));
   ImageRgba32f image;
   image.pixels = readRgba<float>(*in, path, 1.0f, image.width, image.height);
   return image;
@@ -220,7 +208,7 @@ Texture decodeTexture(const std::string& name, std::span<const uint8_t> encoded)
   // Declared before the ImageInput that reads through it, so it outlives the input's close().
   OIIO::Filesystem::IOMemReader reader(encoded.data(), encoded.size());
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(format);
-  if (!in) throw Error(name + ": " + oneLine(OIIO::geterror()));
+  if (!in) throw Error(name + ": " + oiioMessage(OIIO::geterror()));
   if (!in->supports("ioproxy")) {
     throw Error(name + ": this OpenImageIO build cannot decode " + format + " from memory");
   }
@@ -228,7 +216,7 @@ Texture decodeTexture(const std::string& name, std::span<const uint8_t> encoded)
   void* proxy = &reader;
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   OIIO::ImageSpec spec;
-  if (!in->open(name, spec, config)) throw Error(name + ": " + oneLine(in->geterror()));
+  if (!in->open(name, spec, config)) throw Error(name + ": " + oiioMessage(in->geterror()));
   return toTexture(*in, name);
 }
 
@@ -236,7 +224,7 @@ Texture readTexture(const std::string& path) {
   requireRegularFile(path);
   const OIIO::ImageSpec config = straightAlphaConfig();
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
-  if (!in) throw Error(path + ": " + oneLine(OIIO::geterror()));
+  if (!in) throw Error(path + ": " + oiioMessage(OIIO::geterror()));
   return toTexture(*in, path);
 }
 

@@ -18,6 +18,7 @@
 #include "engine/tonemap.h"
 #include "engine/view.h"
 #include "options.h"
+#include "program_exit.h"
 
 namespace {
 
@@ -129,21 +130,11 @@ int run(const render::Options& o) {
   std::printf(
       "wrote %s.exr (linear) and %s.png (exposure x%.3g, ACES filmic, sRGB) in %.2f s wall\n",
       base.c_str(), base.c_str(), engine::exposureScale(image, toneMap), wall);
-  if (ctx.validationMessageCount() > 0) {
-    std::fprintf(stderr, "vsgl_render: error: %u validation messages\n",
-                 ctx.validationMessageCount());
-    return 1;
-  }
-  return 0;
+  return samples::validationExitStatus(ctx, "vsgl_render");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(render::parseOptions(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vsgl_render: error: %s\n", e.what());
-    return 1;
-  }
+  return samples::guardedMain("vsgl_render", [&] { return run(render::parseOptions(argc, argv)); });
 }

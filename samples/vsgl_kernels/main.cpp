@@ -22,6 +22,7 @@
 #include "engine/scene_gpu.h"
 #include "passes/vsgl_attributes.h"
 #include "passes/vsgl_generate.h"
+#include "program_exit.h"
 #include "reference/fis_coverage.h"
 
 namespace {
@@ -282,21 +283,11 @@ int run(const Options& o) {
   std::printf(
       "wrote %s (left Tok15, right modified FIS; PDF on a %g-decade log scale, %dx upscale)\n",
       path.c_str(), kDecades, scale);
-  if (ctx.validationMessageCount() > 0) {
-    std::fprintf(stderr, "vsgl_kernels: error: %u validation messages\n",
-                 ctx.validationMessageCount());
-    return 1;
-  }
-  return 0;
+  return samples::validationExitStatus(ctx, "vsgl_kernels");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(parseOptions(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vsgl_kernels: error: %s\n", e.what());
-    return 1;
-  }
+  return samples::guardedMain("vsgl_kernels", [&] { return run(parseOptions(argc, argv)); });
 }

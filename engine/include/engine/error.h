@@ -8,6 +8,10 @@
 
 namespace engine {
 
+// Joins a multi-line message (as tinygltf and OpenImageIO report them) into one line, the lines
+// separated by "; ", so that every engine::Error stays one line.
+std::string joinLines(const std::string& text);
+
 class Error : public std::runtime_error {
  public:
   explicit Error(const std::string& message) : std::runtime_error(message) {}
