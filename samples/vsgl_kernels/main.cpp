@@ -1,9 +1,11 @@
 // vsgl_kernels: the picture of [S3] Fig. 1 from the GPU passes. Renders the RSM of a built-in
-// scene's first light, builds the VSGL attribute pyramids, generates N VSGLs with the [T15] rule
-// and with modified FIS ([S3] Eq. 3), and writes <out>/<scene>_kernels.png: the PDF in grey
-// (left Tok15, right modified FIS) with each kernel's square in orange and its centre in red, as
-// in the figure. Prints, per rule, how much PDF mass the kernels leave uncovered or cover more
-// than once (gi/src/reference/fis_coverage.h).
+// scene's first light, builds the VSGL attribute pyramids and the PDF (the view-dependent BRSM
+// PDF from the scene camera's importance VSGLs, or the flux PDF), generates N VSGLs with the
+// [T15] rule and with modified FIS ([S3] Eq. 3), and writes <out>/<scene>_kernels.png: the PDF
+// in grey (left Tok15, right modified FIS) with each kernel's square in orange and its centre in
+// red, as in the figure. Prints, per rule, how much PDF mass the kernels leave uncovered or
+// cover more than once (gi/src/reference/fis_coverage.h), and the per-pass GPU times in the
+// structure of [S3] Table 1.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -20,8 +22,8 @@
 #include "engine/error.h"
 #include "engine/image_io.h"
 #include "engine/scene_gpu.h"
-#include "passes/vsgl_attributes.h"
-#include "passes/vsgl_generate.h"
+#include "engine/view.h"
+#include "passes/brsm_pdf.h"
 #include "program_exit.h"
 #include "reference/fis_coverage.h"
 
@@ -35,7 +37,11 @@ struct Options {
   uint32_t rsmSize = 128;
   uint32_t count = 256;      // N
   float kernelScale = 1.0f;  // K
-  uint32_t frames = 5;       // timed frames per rule (after one warm-up frame each)
+  bool brsm = true;          // view-dependent PDF (else flux-proportional)
+  gi::BrsmSettings brsmSettings;
+  uint32_t width = 320;  // the BRSM's additional camera G-buffer
+  uint32_t height = 180;
+  uint32_t frames = 5;  // timed frames per rule (after one warm-up frame each)
   std::string device;
   bool validation = false;
   bool help = false;
@@ -50,6 +56,12 @@ const char* usage() {
          "  --count N      VSGLs per rule, 1..65536 (default 256)\n"
          "  --frames N     timed frames per rule, alternating rules, 1..100 (default 5)\n"
          "  --k K          kernel scale K in [1, N]: kernels hold K/N of the PDF (default 1)\n"
+         "  --pdf KIND     brsm (view-dependent, from the scene camera) or flux (default brsm)\n"
+         "  --importance N importance VSGLs from the camera, 1..65536 (default 2048)\n"
+         "  --brsm-grid N  cells per side of the BRSM evaluation, a power of two <= RSM (default "
+         "32)\n"
+         "  --flux-mix E   share of the flux PDF mixed into the BRSM PDF, (0, 1] (default 0.1)\n"
+         "  --width W, --height H  the BRSM's camera G-buffer size (default 320x180)\n"
          "  --device SEL   Vulkan device index or name substring (default: VSGL_DEVICE or auto)\n"
          "  --validation   enable the Khronos validation layer (any message fails the run)\n";
 }
@@ -75,6 +87,21 @@ Options parseOptions(int argc, char** argv) {
       o.kernelScale = samples::parseFloat(arg, kText = value(), 1.0f, 65536.0f);
     else if (arg == "--frames")
       o.frames = samples::parseUint(arg, value(), 1, 100);
+    else if (arg == "--pdf") {
+      const std::string_view kind = value();
+      if (kind != "brsm" && kind != "flux")
+        throw Error("--pdf: '" + std::string(kind) + "' is neither brsm nor flux");
+      o.brsm = kind == "brsm";
+    } else if (arg == "--importance")
+      o.brsmSettings.importanceCount = samples::parseUint(arg, value(), 1, 65536);
+    else if (arg == "--brsm-grid")
+      o.brsmSettings.gridSize = samples::parseUint(arg, value(), 1, 2048);
+    else if (arg == "--flux-mix")
+      o.brsmSettings.fluxMix = samples::parseFloat(arg, value(), 1e-6f, 1.0f);
+    else if (arg == "--width")
+      o.width = samples::parseUint(arg, value(), 16, 4096);
+    else if (arg == "--height")
+      o.height = samples::parseUint(arg, value(), 16, 4096);
     else if (arg == "--device")
       o.device = value();
     else if (arg == "--validation")
@@ -94,6 +121,9 @@ Options parseOptions(int argc, char** argv) {
     throw Error("--k: " + std::string(kText) + " is outside [1, N = " + std::to_string(o.count) +
                 "]");
   if (o.outDir.empty()) throw Error("--out: empty path");
+  if (!std::has_single_bit(o.brsmSettings.gridSize) || o.brsmSettings.gridSize > o.rsmSize)
+    throw Error("--brsm-grid: " + std::to_string(o.brsmSettings.gridSize) +
+                " is not a power of two <= the RSM size " + std::to_string(o.rsmSize));
   return o;
 }
 
@@ -175,41 +205,126 @@ struct RuleRun {
   std::vector<glm::dvec3> kernels;
 };
 
-// GPU time of the final-step passes in the structure of [S3] Table 1 (lower row): additional
-// RSM (flux + attributes), mipmapping, filtered sampling; the rules alternate frame by frame so
-// that drift on a shared machine hits both alike. The RSM rasterisation is reported apart (the
-// paper's RSM rendering is not part of its Table 1 rows).
-void printTimings(engine::Context& ctx, const Options& o, const engine::SceneGpu& scene,
-                  engine::Rasterizer& rasterizer, engine::GBufferResolve& resolve,
-                  gi::ReflectiveShadowMap& rsm, const gi::MipPyramid& mips,
-                  gi::VsglAttributes& attributes, gi::VsglGenerator& generator,
-                  const gi::RsmView& view, const engine::Light& light) {
-  const char* passes[] = {"rsm raster", "rsm flux", "vsgl attributes", "attribute mipmapping",
-                          "filtered sampling"};
+// Every pass of one frame of VSGL generation, from the camera G-buffer to the VSGL buffer.
+class Frame {
+ public:
+  Frame(engine::Context& ctx, const Options& o, const engine::Scene& scene)
+      : o_(o),
+        scene_(engine::uploadScene(ctx, scene)),
+        light_(scene.lights.at(0)),
+        camera_(scene.cameras.at(0)),
+        view_(gi::makeRsmView(scene, light_, o.rsmSize)),
+        cameraView_(engine::cameraView(camera_, o.width, o.height)),
+        rasterizer_(ctx),
+        resolve_(ctx),
+        mips_(ctx),
+        gbuffer_(engine::createGBuffer(ctx, o.width, o.height)),
+        visibility_(ctx, engine::Rasterizer::visibilityBytes(o.width, o.height),
+                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly),
+        importance_(ctx, o.width, o.height, o.brsmSettings.importanceCount),
+        rsm_(ctx, o.rsmSize),
+        attributes_(ctx, o.rsmSize),
+        brsm_(ctx, o.rsmSize, o.brsmSettings.gridSize),
+        generator_(ctx, o.count) {}
+
+  const engine::Light& light() const { return light_; }
+
+  void record(VkCommandBuffer cmd, uint32_t rule, engine::GpuProfiler* profiler) {
+    if (o_.brsm) {
+      {
+        // The BRSM's additional G-buffer (a host could hand in its own instead).
+        engine::ProfileScope scope(profiler, cmd, "brsm camera g-buffer");
+        rasterizer_.record(cmd, scene_, cameraView_.viewProj,
+                           {&visibility_, 0, o_.width, o_.height});
+        resolve_.record(cmd, scene_, visibility_, cameraView_, gbuffer_);
+      }
+      importance_.record(cmd, gbuffer_, camera_, cameraView_, o_.brsmSettings.importanceCount,
+                         mips_, profiler);
+    }
+    rsm_.record(cmd, scene_, rasterizer_, resolve_, view_, light_, profiler);
+    attributes_.record(cmd, rsm_.vpls(), rsm_.surface(), view_, mips_, profiler);
+    if (o_.brsm)
+      brsm_.record(cmd, attributes_, view_, importance_.vsgls(), o_.brsmSettings, mips_, profiler);
+    generator_.record(cmd, attributes_, view_, {o_.count, o_.kernelScale, rule}, profiler);
+  }
+
+  gi::VsglAttributes& attributes() { return attributes_; }
+  const engine::Buffer& vsgls() const { return generator_.vsgls(); }
+
+ private:
+  const Options& o_;
+  engine::SceneGpu scene_;
+  engine::Light light_;
+  engine::Camera camera_;
+  gi::RsmView view_;
+  engine::View cameraView_;
+  engine::Rasterizer rasterizer_;
+  engine::GBufferResolve resolve_;
+  gi::MipPyramid mips_;
+  engine::GBuffer gbuffer_;
+  engine::Buffer visibility_;
+  gi::ImportanceVsgls importance_;
+  gi::ReflectiveShadowMap rsm_;
+  gi::VsglAttributes attributes_;
+  gi::BrsmPdf brsm_;
+  gi::VsglGenerator generator_;
+};
+
+// A row of the timing table and the profiler passes it adds up.
+struct TimingRow {
+  const char* label;
+  std::vector<const char*> passes;
+  bool counted;  // part of the VSGL generation total ([S3] Table 1 rows and the BRSM evaluation)
+};
+
+// GPU time per pass in the structure of [S3] Table 1: upper row the BRSM's importance VSGLs
+// (additional G-buffer, mipmapping, filtered sampling), then the stage-B evaluation that the
+// paper does not list, and the final row (additional RSM, mipmapping, filtered sampling). The
+// rules alternate frame by frame so that drift on a shared machine hits both alike. The camera
+// RSM rasterisation is shown apart: the light's shadow map needs it anyway.
+void printTimings(engine::Context& ctx, const Options& o, Frame& frame) {
+  std::vector<TimingRow> rows;
+  if (o.brsm) {
+    rows.push_back({"BRSM: additional G-buffer (raster)", {"brsm camera g-buffer"}, true});
+    rows.push_back({"BRSM: additional G-buffer (flux, attributes)",
+                    {"brsm camera flux", "brsm vsgl attributes"},
+                    true});
+    rows.push_back({"BRSM: mipmapping", {"brsm attribute mipmapping"}, true});
+    rows.push_back({"BRSM: filtered sampling", {"brsm filtered sampling"}, true});
+    rows.push_back({"BRSM: evaluation at the RSM cells", {"brsm evaluation"}, true});
+  }
+  rows.push_back({"RSM rasterisation (the shadow map's)", {"rsm raster"}, false});
+  rows.push_back({"final: additional RSM", {"rsm flux", "vsgl attributes"}, true});
+  rows.push_back({"final: mipmapping", {"attribute mipmapping", "brsm pdf mipmapping"}, true});
+  rows.push_back({"final: filtered sampling", {"filtered sampling"}, true});
+
   std::map<std::string, std::vector<double>> times[2];
   engine::GpuProfiler profiler(ctx);
-  for (uint32_t frame = 0; frame < 2 * (o.frames + 1); ++frame) {
-    const uint32_t rule = frame % 2 ? VSGL_RULE_MODIFIED : VSGL_RULE_TOK15;
+  for (uint32_t i = 0; i < 2 * (o.frames + 1); ++i) {
+    const uint32_t rule = i % 2 ? VSGL_RULE_MODIFIED : VSGL_RULE_TOK15;
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       profiler.beginFrame(cmd);
-      rsm.record(cmd, scene, rasterizer, resolve, view, light, &profiler);
-      attributes.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler);
-      generator.record(cmd, attributes, view, {o.count, o.kernelScale, rule}, &profiler);
+      frame.record(cmd, rule, &profiler);
     });
-    if (frame < 2) continue;  // warm-up: pipelines compile at their first dispatch
+    if (i < 2) continue;  // warm-up: pipelines compile at their first dispatch
     for (const auto& p : profiler.results()) times[rule][p.name].push_back(p.ms);
   }
   std::printf("GPU time per pass, median of %u frames (ms)      Tok15   modified\n", o.frames);
-  double total[2] = {0.0, 0.0};
-  for (const char* pass : passes) {
-    double t[2] = {engine::median(times[0][pass]), engine::median(times[1][pass])};
-    std::printf("  %-42s %8.3f %8.3f\n", pass, t[0], t[1]);
-    if (std::string(pass) != "rsm raster")
-      for (int r = 0; r < 2; ++r) total[r] += t[r];
+  double total[2] = {0.0, 0.0}, sampling[2] = {0.0, 0.0};
+  for (const TimingRow& row : rows) {
+    double t[2] = {0.0, 0.0};
+    for (int r = 0; r < 2; ++r)
+      for (const char* pass : row.passes) t[r] += engine::median(times[r][pass]);
+    std::printf("  %-46s %8.3f %8.3f\n", row.label, t[0], t[1]);
+    for (int r = 0; r < 2; ++r) {
+      if (row.counted) total[r] += t[r];
+      if (std::string_view(row.label).ends_with("filtered sampling")) sampling[r] += t[r];
+    }
   }
-  std::printf("  %-42s %8.3f %8.3f  (modified / Tok15 = %.3f)\n",
-              "additional RSM + mipmapping + filtered sampling", total[0], total[1],
-              total[1] / total[0]);
+  std::printf("  %-46s %8.3f %8.3f  (modified / Tok15 = %.3f)\n", "VSGL generation total", total[0],
+              total[1], total[1] / total[0]);
+  std::printf("  %-46s %8.3f %8.3f  (modified / Tok15 = %.3f)\n", "filtered sampling only",
+              sampling[0], sampling[1], sampling[1] / sampling[0]);
 }
 
 int run(const Options& o) {
@@ -222,40 +337,36 @@ int run(const Options& o) {
   if (ec) throw Error(o.outDir + ": cannot create output directory: " + ec.message());
 
   engine::Scene scene = engine::makeBuiltinScene(o.scene);
-  const engine::Light& light = scene.lights.at(0);
-  const gi::RsmView view = gi::makeRsmView(scene, light, o.rsmSize);
-
   engine::Context ctx({o.validation, o.device});
+  Frame frame(ctx, o, scene);
   std::printf("device: %s (%s)\nscene: %s, light '%s', RSM %u^2, N = %u, K = %g\n",
               ctx.info().name.c_str(), ctx.info().driver.c_str(), scene.source.c_str(),
-              light.name.c_str(), o.rsmSize, o.count, double(o.kernelScale));
-  engine::SceneGpu gpuScene = engine::uploadScene(ctx, scene);
-  engine::Rasterizer rasterizer(ctx);
-  engine::GBufferResolve resolve(ctx);
-  gi::ReflectiveShadowMap rsm(ctx, o.rsmSize);
-  gi::MipPyramid mips(ctx);
-  gi::VsglAttributes attributes(ctx, o.rsmSize);
-  gi::VsglGenerator generator(ctx, o.count);
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    rsm.record(cmd, gpuScene, rasterizer, resolve, view, light);
-    attributes.record(cmd, rsm.vpls(), rsm.surface(), view, mips);
-  });
-
-  // The PDF the generator warps: alpha of the diffuse-axis pyramid (shared/vsgl_attributes.h).
-  const std::vector<glm::vec4> texels =
-      attributes.pyramid(VSGL_ATTR_DIFFUSE_AXIS).readbackRgba32f(ctx, 0);
-  std::vector<double> pdfBase;
-  for (const glm::vec4& t : texels) pdfBase.push_back(t.w);
-  const gi::ScalarPyramid pdf = gi::makeScalarPyramid(pdfBase, o.rsmSize);
+              frame.light().name.c_str(), o.rsmSize, o.count, double(o.kernelScale));
+  if (o.brsm)
+    std::printf(
+        "PDF: BRSM, %u importance VSGLs from a %ux%u camera G-buffer, %u^2 cells, flux "
+        "mix %g\n",
+        o.brsmSettings.importanceCount, o.width, o.height, o.brsmSettings.gridSize,
+        double(o.brsmSettings.fluxMix));
+  else
+    std::printf("PDF: flux-proportional\n");
 
   std::vector<RuleRun> runs{{"Tok15 [T15]", VSGL_RULE_TOK15, {}},
                             {"modified FIS [S3]", VSGL_RULE_MODIFIED, {}}};
+  std::vector<double> pdfBase;
   for (RuleRun& r : runs) {
-    const gi::VsglSettings settings{o.count, o.kernelScale, r.rule};
-    ctx.submitAndWait(
-        [&](VkCommandBuffer cmd) { generator.record(cmd, attributes, view, settings); });
-    const auto vsgls = generator.vsgls().readbackAs<gpu::Vsgl>(ctx);
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { frame.record(cmd, r.rule, nullptr); });
+    if (pdfBase.empty()) {
+      // The PDF the generator warps: alpha of the diffuse-axis pyramid (vsgl_attributes.h).
+      for (const glm::vec4& t :
+           frame.attributes().pyramid(VSGL_ATTR_DIFFUSE_AXIS).readbackRgba32f(ctx, 0))
+        pdfBase.push_back(t.w);
+    }
+    const auto vsgls = frame.vsgls().readbackAs<gpu::Vsgl>(ctx);
     for (uint32_t i = 0; i < o.count; ++i) r.kernels.emplace_back(glm::dvec3(vsgls[i].kernel));
+  }
+  const gi::ScalarPyramid pdf = gi::makeScalarPyramid(pdfBase, o.rsmSize);
+  for (const RuleRun& r : runs) {
     const gi::KernelCoverage c = gi::measureCoverage(pdf, r.kernels);
     std::printf("%-18s PDF mass uncovered %6.2f %%, covered twice or more %6.2f %%, sum %6.2f %%\n",
                 r.name, 100.0 * c.uncoveredMass, 100.0 * c.multiplyCoveredMass,
@@ -275,8 +386,7 @@ int run(const Options& o) {
     for (const glm::dvec3& k : runs[i].kernels) drawKernel(canvas, panel, k, o.rsmSize);
     for (const glm::dvec3& k : runs[i].kernels) drawCentre(canvas, panel, k, o.rsmSize);
   }
-  printTimings(ctx, o, gpuScene, rasterizer, resolve, rsm, mips, attributes, generator, view,
-               light);
+  printTimings(ctx, o, frame);
 
   const std::string path = (std::filesystem::path(o.outDir) / (o.scene + "_kernels.png")).string();
   engine::writePng(path, canvas.width, canvas.height, canvas.rgba);

@@ -2,6 +2,8 @@
 #ifndef SHADERS_COMMON_VSGL_LOBES_GLSL
 #define SHADERS_COMMON_VSGL_LOBES_GLSL
 
+#include "shared/vsgl.h"
+
 // Inverse of Banerjee's vMF sharpness estimate kappa(r) = r (3 - r^2) / (1 - r^2): the mean
 // length r in [0, 1) whose estimate is `sharpness`, so a one-VPL cluster reproduces its own
 // sharpness. Below 64 the trigonometric closed form of the cubic (Peters 2016, via Tokuyoshi's
@@ -36,6 +38,22 @@ void vplSpecularLobe(vec3 n, vec3 toLight, float roughness, out vec3 axis, out f
   axis = reflect(-toLight, h);
   float lambdaH = 2.0 / alpha2 - 2.0;
   sharpness = lambdaH * max(dot(h, n), 0.0) / max(4.0 * abs(dot(toLight, h)), 1e-8);
+}
+
+// Banerjee's vMF sharpness estimate from a mean resultant length r (section 3.3),
+// r (3 - r^2) / (1 - r^2), clamped to VSGL_MAX_SHARPNESS (r -> 1: one VPL or identical axes).
+float banerjeeSharpness(float r) {
+  if (!(r > 0.0)) return 0.0;
+  if (r >= 1.0) return float(VSGL_MAX_SHARPNESS);
+  return min(r * (3.0 - r * r) / ((1.0 - r) * (1.0 + r)), float(VSGL_MAX_SHARPNESS));
+}
+
+// A cluster lobe's SG from its weighted mean axis vector (axis sums / weight): unit axis and
+// Banerjee sharpness; a zero mean axis (opposite lobes cancelled) is isotropic about +z.
+void lobeFromMeanAxis(vec3 meanAxis, out vec3 axis, out float sharpness) {
+  float meanLength = length(meanAxis);
+  axis = meanLength > 0.0 ? meanAxis / meanLength : vec3(0.0, 0.0, 1.0);
+  sharpness = banerjeeSharpness(meanLength);
 }
 
 #endif

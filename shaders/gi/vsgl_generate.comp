@@ -10,6 +10,7 @@
 #include "shared/vsgl.h"
 #include "shared/vsgl_attributes.h"
 #include "shared/vsgl_generate.h"
+#include "common/vsgl_lobes.glsl"
 
 layout(local_size_x = VSGL_GENERATE_GROUP) in;
 
@@ -96,12 +97,6 @@ float tok15Level(float density) {
   return clamp(0.5 * log2(pc.kernelScale * m / (float(pc.count) * density)), 0.0, top);
 }
 
-float banerjeeSharpness(float r) {
-  if (!(r > 0.0)) return 0.0;
-  if (r >= 1.0) return float(VSGL_MAX_SHARPNESS);
-  return min(r * (3.0 - r * r) / ((1.0 - r) * (1.0 + r)), float(VSGL_MAX_SHARPNESS));
-}
-
 // One lobe from kernel sums (vsgl-math.md 3.2): mean, per-axis variance (never negative),
 // axis and Banerjee sharpness (axis length 0 -> isotropic), power.
 VsglLobe buildLobe(vec4 power, vec4 position, vec4 axis) {
@@ -115,11 +110,11 @@ VsglLobe buildLobe(vec4 power, vec4 position, vec4 axis) {
   }
   vec3 mean = position.xyz / w;
   float variance = max(0.0, position.w / w - dot(mean, mean)) * 0.5;
-  vec3 meanAxis = axis.xyz / w;
-  float meanLength = length(meanAxis);
-  vec3 unitAxis = meanLength > 0.0 ? meanAxis / meanLength : vec3(0.0, 0.0, 1.0);
+  vec3 unitAxis;
+  float sharpness;
+  lobeFromMeanAxis(axis.xyz / w, unitAxis, sharpness);
   lobe.meanVariance = vec4(pc.origin.xyz + mean, variance);
-  lobe.axisSharpness = vec4(unitAxis, banerjeeSharpness(meanLength));
+  lobe.axisSharpness = vec4(unitAxis, sharpness);
   lobe.power = power;
   return lobe;
 }

@@ -1,6 +1,7 @@
 # Runs a command that must fail cleanly: non-zero exit, no crash (no signal), and exactly one
 # line on stderr that contains EXPECT (a regular expression).
 #   cmake -DCOMMAND="prog;arg;..." -DEXPECT=regex [-DENV="VAR=value"] -P expect_error.cmake
+# The error line starts with the program's name ("<name>: error:").
 if(ENV)
   string(REPLACE "=" ";" kv "${ENV}")
   list(GET kv 0 name)
@@ -14,15 +15,17 @@ endif()
 if(NOT result MATCHES "^[0-9]+$")
   message(FATAL_ERROR "crashed: ${result}; stderr: ${err}")
 endif()
+list(GET COMMAND 0 program)
+get_filename_component(program "${program}" NAME_WE)
 # Drop lines that are not ours (e.g. libpng's own diagnostics) before counting.
 string(REGEX REPLACE "\n$" "" err "${err}")
 # (Messages may contain ';', which CMake would split as a list: count prefixes, not matches.)
-string(REGEX MATCHALL "vsgl_render: error:" prefixes "${err}")
+string(REGEX MATCHALL "${program}: error:" prefixes "${err}")
 list(LENGTH prefixes count)
 if(NOT count EQUAL 1)
   message(FATAL_ERROR "expected exactly one error line, got ${count}: ${err}")
 endif()
-string(REGEX MATCH "vsgl_render: error:[^\n]*" ours "${err}")
+string(REGEX MATCH "${program}: error:[^\n]*" ours "${err}")
 if(NOT ours MATCHES "${EXPECT}")
   message(FATAL_ERROR "error line does not match '${EXPECT}': ${ours}")
 endif()

@@ -34,7 +34,10 @@ class Image {
   VkImage handle() const { return image_; }
   VkImageView view() const { return view_; }
   // A view of one mip level (storage writes need one level per view); index 0 = base level.
-  VkImageView mipView(uint32_t level) const { return mipViews_.at(level); }
+  // A single-level image's own view serves as its level 0.
+  VkImageView mipView(uint32_t level) const {
+    return desc_.mips == 1 && level == 0 ? view_ : mipViews_.at(level);
+  }
   const ImageDesc& desc() const { return desc_; }
   VkImageLayout layout() const { return layout_; }
   void setLayout(VkImageLayout layout) { layout_ = layout; }

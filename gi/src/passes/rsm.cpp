@@ -102,15 +102,16 @@ VplImages createVplImages(engine::Context& ctx, uint32_t width, uint32_t height)
   return v;
 }
 
-FluxPass::FluxPass(engine::Context& ctx)
-    : program_(ctx, "rsm_flux", kRsmFluxSpv,
+FluxPass::FluxPass(engine::Context& ctx, std::string passName)
+    : passName_(std::move(passName)),
+      program_(ctx, "rsm_flux", kRsmFluxSpv,
                std::vector<VkDescriptorType>(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
                sizeof(gpu::RsmFluxPush)) {}
 
 void FluxPass::record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmView& view,
                       const FluxSource& source, VplImages& out,
                       engine::GpuProfiler* profiler) const {
-  engine::ProfileScope scope(profiler, cmd, "rsm flux");
+  engine::ProfileScope scope(profiler, cmd, passName_);
   gpu::RsmFluxPush push{};
   push.invViewProjRelative = view.invViewProjRelative;
   push.axis = glm::vec4(view.axis, 0.0f);

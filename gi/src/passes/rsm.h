@@ -4,6 +4,8 @@
 // (formats: shaders/shared/rsm_flux.h).
 #pragma once
 
+#include <string>
+
 #include "engine/gbuffer.h"
 #include "engine/rasterizer.h"
 #include "engine/scene.h"
@@ -61,12 +63,14 @@ VplImages createVplImages(engine::Context& ctx, uint32_t width, uint32_t height)
 // rsm_flux.comp over any G-buffer (a light's or the camera's).
 class FluxPass {
  public:
-  explicit FluxPass(engine::Context& ctx);
+  // `passName`: the profiler's name for it (the camera's importance flux is timed apart).
+  explicit FluxPass(engine::Context& ctx, std::string passName = "rsm flux");
   void record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmView& view,
               const FluxSource& source, VplImages& out,
               engine::GpuProfiler* profiler = nullptr) const;
 
  private:
+  std::string passName_;
   engine::ComputeProgram program_;
 };
 

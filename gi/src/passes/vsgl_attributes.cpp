@@ -6,8 +6,9 @@
 
 namespace gi {
 
-VsglAttributes::VsglAttributes(engine::Context& ctx, uint32_t size)
+VsglAttributes::VsglAttributes(engine::Context& ctx, uint32_t size, std::string passPrefix)
     : size_(size),
+      passPrefix_(std::move(passPrefix)),
       program_(ctx, "vsgl_attributes", kVsglAttributesSpv,
                std::vector<VkDescriptorType>(4 + VSGL_ATTR_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
                sizeof(gpu::VsglAttributesPush)) {
@@ -22,7 +23,7 @@ void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffe
                         std::to_string(vpls.height) + " exceeds the " + std::to_string(size_) +
                         "^2 pyramids");
   {
-    engine::ProfileScope scope(profiler, cmd, "vsgl attributes");
+    engine::ProfileScope scope(profiler, cmd, passPrefix_ + "vsgl attributes");
     if (vpls.width < size_ || vpls.height < size_) {
       // Padding texels must hold zero power and zero PDF.
       VkClearColorValue zero{};
@@ -46,7 +47,7 @@ void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffe
         engine::groupCount(vpls.height, VSGL_ATTR_GROUP_Y));
     engine::computeBarrier(cmd);
   }
-  engine::ProfileScope scope(profiler, cmd, "attribute mipmapping");
+  engine::ProfileScope scope(profiler, cmd, passPrefix_ + "attribute mipmapping");
   for (auto& p : pyramids_) mips.record(cmd, p);
 }
 

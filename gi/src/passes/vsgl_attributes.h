@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 
 #include "passes/mip_pyramid.h"
 #include "passes/rsm.h"
@@ -13,7 +14,9 @@ namespace gi {
 class VsglAttributes {
  public:
   // `size`: the pyramids' base, a power of two at least as large as every source it will read.
-  VsglAttributes(engine::Context& ctx, uint32_t size);
+  // `passPrefix` is put before the profiler's pass names ("vsgl attributes", "attribute
+  // mipmapping"), so that the camera's importance pyramids are timed apart from the light's.
+  VsglAttributes(engine::Context& ctx, uint32_t size, std::string passPrefix = {});
 
   // Level 0 from `vpls` (any extent up to size x size; the rest of level 0 is zero, so padding
   // carries no power and no PDF, vsgl-math.md 5.3) and the normals of `surface`, then the mips.
@@ -24,6 +27,7 @@ class VsglAttributes {
 
  private:
   uint32_t size_;
+  std::string passPrefix_;
   engine::ComputeProgram program_;
   std::array<engine::Image, VSGL_ATTR_COUNT> pyramids_;
 };

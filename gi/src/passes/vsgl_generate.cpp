@@ -8,8 +8,9 @@
 
 namespace gi {
 
-VsglGenerator::VsglGenerator(engine::Context& ctx, uint32_t maxCount)
+VsglGenerator::VsglGenerator(engine::Context& ctx, uint32_t maxCount, std::string passPrefix)
     : maxCount_(maxCount),
+      passPrefix_(std::move(passPrefix)),
       program_(
           ctx, "vsgl_generate", kVsglGenerateSpv,
           [] {
@@ -34,7 +35,7 @@ void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, cons
   if (settings.rule != VSGL_RULE_TOK15 && settings.rule != VSGL_RULE_MODIFIED)
     throw engine::Error("VSGL rule " + std::to_string(settings.rule) +
                         " is neither Tok15 nor modified FIS");
-  engine::ProfileScope scope(profiler, cmd, "filtered sampling");
+  engine::ProfileScope scope(profiler, cmd, passPrefix_ + "filtered sampling");
   const uint32_t size = attributes.pyramid(0).desc().width;
   gpu::VsglGeneratePush push{};
   push.origin = glm::vec4(view.origin, 0.0f);

@@ -16,7 +16,8 @@ struct VsglSettings {
 
 class VsglGenerator {
  public:
-  VsglGenerator(engine::Context& ctx, uint32_t maxCount);
+  // `passPrefix` is put before the profiler's pass name, "filtered sampling".
+  VsglGenerator(engine::Context& ctx, uint32_t maxCount, std::string passPrefix = {});
 
   void record(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
               const VsglSettings& settings, engine::GpuProfiler* profiler = nullptr);
@@ -25,6 +26,7 @@ class VsglGenerator {
 
  private:
   uint32_t maxCount_;
+  std::string passPrefix_;
   engine::ComputeProgram program_;
   engine::Sampler sampler_;  // unused by texelFetch, but a combined image sampler needs one
   engine::Buffer vsgls_;

@@ -1,0 +1,79 @@
+// The view-dependent PDF over RSM texels (bidirectional RSM, Ritschel et al. 2011 in
+// Tokuyoshi's two-stage form, vsgl-math.md section 7; formats in shaders/shared/brsm.h).
+//   Stage A (ImportanceVsgls): the camera's G-buffer becomes importance VSGLs through the same
+//     flux, attribute, mip and generation passes as a light's RSM, with unit emission and the
+//     pixel's reflectance as its PDF ([S3] "additional G-buffer / mipmapping / filtered
+//     sampling", upper row of Table 1).
+//   Stage B (BrsmPdf): the importance VSGLs are evaluated at a grid of RSM cells and the product
+//     with each texel's weights, mixed with the flux PDF, replaces the PDF channel of the
+//     light's attribute pyramids, which are then mip-mapped again.
+#pragma once
+
+#include <string>
+
+#include "passes/vsgl_generate.h"
+
+namespace gi {
+
+struct BrsmSettings {
+  // Importance VSGLs generated from the camera G-buffer, [1, 65536] ([S3]: 2048). Cost: stage B
+  // is linear in it (cells x count x 4 SG inner products); generation is negligible.
+  uint32_t importanceCount = 2048;
+  // Cells per side of the stage-B grid, a power of two in [1, RSM size]; the RSM size makes it
+  // per texel. Within a cell the PDF follows the texels' flux. Cost ~ gridSize^2 x
+  // importanceCount (about 9 ns per cell and importance VSGL on lavapipe, 2 cores: 32^2 x 2048
+  // = 80 ms, 64^2 x 2048 = 0.3 s).
+  uint32_t gridSize = 32;
+  // Share e in (0, 1] of the flux-proportional PDF mixed in: every lit texel keeps p > 0, so no
+  // light is lost where the importance estimate is zero; 1 = the flux PDF. No cost.
+  float fluxMix = 0.1f;
+};
+
+// Throws engine::Error naming the field when a setting is outside its range (rsmSize: the
+// light's pyramid size).
+void validateBrsmSettings(const BrsmSettings& settings, uint32_t rsmSize);
+
+// Stage A. `width` x `height` is the camera G-buffer's size; the pyramids are the next power of
+// two square (padding carries no power and no PDF). Pass names carry the prefix "brsm ".
+class ImportanceVsgls {
+ public:
+  ImportanceVsgls(engine::Context& ctx, uint32_t width, uint32_t height, uint32_t maxCount);
+
+  // `gbuffer`: the camera's G-buffer of the size given at construction, seen through `view`.
+  void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::Camera& camera,
+              const engine::View& view, uint32_t count, const MipPyramid& mips,
+              engine::GpuProfiler* profiler = nullptr);
+
+  const engine::Buffer& vsgls() const { return generator_.vsgls(); }  // gpu::Vsgl[count]
+  VsglAttributes& attributes() { return attributes_; }
+
+ private:
+  FluxPass flux_;
+  VplImages vpls_;
+  VsglAttributes attributes_;
+  VsglGenerator generator_;
+};
+
+// Stage B over a light's attribute pyramids (already filled and mip-mapped).
+class BrsmPdf {
+ public:
+  // `rsmSize`: the light pyramids' size; `gridSize` is fixed here (the cell pyramid's size).
+  BrsmPdf(engine::Context& ctx, uint32_t rsmSize, uint32_t gridSize);
+
+  // Evaluates the first `settings.importanceCount` records of `importance` at the cells, writes
+  // the PDF into `light`'s diffuse axis pyramid and mip-maps it.
+  void record(VkCommandBuffer cmd, VsglAttributes& light, const RsmView& view,
+              const engine::Buffer& importance, const BrsmSettings& settings,
+              const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr);
+
+  engine::Image& cells() { return cells_; }  // the cell pyramid (shaders/shared/brsm.h)
+
+ private:
+  uint32_t rsmSize_;
+  uint32_t gridSize_;
+  engine::ComputeProgram evaluate_;
+  engine::ComputeProgram compose_;
+  engine::Image cells_;
+};
+
+}  // namespace gi

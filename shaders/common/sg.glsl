@@ -1,0 +1,73 @@
+// Spherical Gaussian math in fp32 with the stable forms of vsgl-math.md section 4.2. The double
+// oracle is gi/src/reference/sg_math.cpp; names and conventions follow it:
+// G(w; axis, sharpness) = exp(sharpness (w . axis - 1)), amplitudes kept as logarithms.
+#ifndef SHADERS_COMMON_SG_GLSL
+#define SHADERS_COMMON_SG_GLSL
+
+const float kSgPi = 3.14159265358979;
+const float kSgFltMin = 1.17549435e-38;
+// v >= d^2 / 2^41 (section 4.1): the spot sharpness d^2 / v stays <= VSGL_MAX_SHARPNESS.
+const float kSgVarianceFloorScale = 4.5474735e-13;
+
+// (e^x - 1) / x with the Higham/Kahan correction (section 4.2): (u - 1) / log(u) cancels the
+// rounding of u = e^x near x = 0, where the naive (u - 1) / x loses every digit.
+float em1x(float x) {
+  float u = exp(x);
+  if (u == 1.0) return 1.0;
+  float y = u - 1.0;
+  return abs(x) < 1.0 ? y / log(u) : y / x;
+}
+
+// Integral of G over the sphere, 4 pi em1x(-2 lambda): 4 pi at lambda = 0, 2 pi / lambda for large.
+// Above lambda = 8 the dropped e^(-2 lambda) < 1.2e-7 is below fp32 rounding: the exp is skipped.
+float sgIntegral(float sharpness) {
+  return sharpness > 8.0 ? 2.0 * kSgPi / sharpness : 4.0 * kSgPi * em1x(-2.0 * sharpness);
+}
+
+struct Sg {
+  vec3 axis;  // unit
+  float sharpness;
+  float logAmplitude;
+};
+
+// The product of two SGs (section 4.2) with the log amplitude in its cancellation-free form
+// -l1 l2 |xi1 - xi2|^2 / (|u| + l1 + l2). |u| = 0 (opposite axes with equal sharpness, or both
+// sharpnesses 0) makes the product constant: any unit axis is exact, a.axis is kept.
+Sg sgProduct(Sg a, Sg b) {
+  vec3 u = a.sharpness * a.axis + b.sharpness * b.axis;
+  Sg p;
+  p.sharpness = length(u);
+  p.axis = p.sharpness > 0.0 ? u / p.sharpness : a.axis;
+  vec3 gap = a.axis - b.axis;
+  float denominator = p.sharpness + a.sharpness + b.sharpness;
+  float logProduct = denominator > 0.0 ? -a.sharpness * b.sharpness * dot(gap, gap) / denominator : 0.0;
+  p.logAmplitude = a.logAmplitude + b.logAmplitude + logProduct;
+  return p;
+}
+
+// Integral of the product over the sphere, e^(l_p) S(lambda_p), with `logScale` folded into the
+// exponent so that a huge scale and a tiny overlap never overflow apart.
+float sgInnerProduct(Sg a, Sg b, float logScale) {
+  Sg p = sgProduct(a, b);
+  return exp(p.logAmplitude + logScale) * sgIntegral(p.sharpness);
+}
+
+// Incoming radiance at `receiver` from a VSGL lobe (section 4.1): the emitted lobe seen back
+// along -axis times the planar Gaussian spot G(w; l / d, d^2 / v'), v' = max(v, d^2 / 2^41,
+// FLT_MIN), so that single-texel (zero-variance) lobes and a receiver at the mean stay finite.
+// The result's logAmplitude includes log E = logScale - log v', where logScale =
+// log(power / (2 pi S(sharpness))) is per lobe (computed apart so loops can hoist it).
+Sg vsglIncomingRadiance(vec3 mean, float variance, vec3 axis, float sharpness, float logScale,
+                        vec3 receiver) {
+  vec3 toLight = mean - receiver;
+  float distance2 = dot(toLight, toLight);
+  float distance = sqrt(distance2);
+  float clampedVariance = max(max(variance, distance2 * kSgVarianceFloorScale), kSgFltMin);
+  Sg emitted = Sg(-axis, sharpness, 0.0);
+  Sg spot = Sg(distance > 0.0 ? toLight / distance : -axis, distance2 / clampedVariance, 0.0);
+  Sg radiance = sgProduct(emitted, spot);
+  radiance.logAmplitude += logScale - log(clampedVariance);
+  return radiance;
+}
+
+#endif
