@@ -63,7 +63,12 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
   std::printf("pixel solid angles %.6f sr, frustum %.6f sr\n", solidAngle, frustum);
   EXPECT_NEAR(solidAngle, frustum, 1e-3 * frustum);
 
-  // Padding: zero everywhere outside the image in every level-0 attribute.
+  // Padding: zero everywhere outside the image in every level-0 attribute, also on a second
+  // frame, which does not clear it again.
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    flux.record(cmd, gbuffer, importance, unitImportance, vpls);
+    attributes.record(cmd, vpls, gbuffer, importance, mips);
+  });
   for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
     auto base = attributes.pyramid(a).readbackRgba32f(ctx(), 0);
     for (uint32_t y = 0; y < pyramidSize; ++y)

@@ -36,8 +36,9 @@ ImportanceVsgls::ImportanceVsgls(engine::Context& ctx, uint32_t width, uint32_t 
       generator_(ctx, maxCount, "brsm ") {}
 
 void ImportanceVsgls::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
-                             const engine::Camera& camera, const engine::View& view, uint32_t count,
-                             const MipPyramid& mips, engine::GpuProfiler* profiler) {
+                             const engine::Camera& camera, const engine::View& view,
+                             const VsglSettings& settings, const MipPyramid& mips,
+                             engine::GpuProfiler* profiler) {
   if (view.width != vpls_.width || view.height != vpls_.height)
     throw engine::Error("BRSM importance: view " + std::to_string(view.width) + "x" +
                         std::to_string(view.height) + " differs from the " +
@@ -47,8 +48,7 @@ void ImportanceVsgls::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
   // Unit emission without falloff: a pixel's weight is its reflectance times its solid angle.
   flux_.record(cmd, gbuffer, importance, FluxSource{}, vpls_, profiler);
   attributes_.record(cmd, vpls_, gbuffer, importance, mips, profiler);
-  // Modified FIS with K = 1, as for the final VSGLs ([S3] section 5).
-  generator_.record(cmd, attributes_, importance, {count, 1.0f, VSGL_RULE_MODIFIED}, profiler);
+  generator_.record(cmd, attributes_, importance, settings, profiler);
 }
 
 BrsmPdf::BrsmPdf(engine::Context& ctx, uint32_t rsmSize, uint32_t gridSize)

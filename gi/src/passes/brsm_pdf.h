@@ -40,8 +40,9 @@ class ImportanceVsgls {
   ImportanceVsgls(engine::Context& ctx, uint32_t width, uint32_t height, uint32_t maxCount);
 
   // `gbuffer`: the camera's G-buffer of the size given at construction, seen through `view`.
+  // `settings.count` = BrsmSettings::importanceCount; [S3] uses K = 1 and the final VSGLs' rule.
   void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::Camera& camera,
-              const engine::View& view, uint32_t count, const MipPyramid& mips,
+              const engine::View& view, const VsglSettings& settings, const MipPyramid& mips,
               engine::GpuProfiler* profiler = nullptr);
 
   const engine::Buffer& vsgls() const { return generator_.vsgls(); }  // gpu::Vsgl[count]

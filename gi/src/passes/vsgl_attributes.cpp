@@ -24,8 +24,13 @@ void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffe
                         "^2 pyramids");
   {
     engine::ProfileScope scope(profiler, cmd, passPrefix_ + "vsgl attributes");
-    if (vpls.width < size_ || vpls.height < size_) {
-      // Padding texels must hold zero power and zero PDF.
+    if ((vpls.width < size_ || vpls.height < size_) &&
+        glm::uvec2(vpls.width, vpls.height) != paddedExtent_) {
+      // Padding texels must hold zero power and zero PDF. No pass writes them afterwards (the
+      // attribute pass covers only the source, the BRSM compose writes their zeros back), so
+      // the clear is needed only when the source extent changes: at 1920x1088 in 2048^2 it is
+      // six 64 MB clears per frame saved.
+      paddedExtent_ = glm::uvec2(vpls.width, vpls.height);
       VkClearColorValue zero{};
       VkImageSubresourceRange base{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
       engine::computeToTransferBarrier(cmd);

@@ -20,6 +20,8 @@ class VsglAttributes {
 
   // Level 0 from `vpls` (any extent up to size x size; the rest of level 0 is zero, so padding
   // carries no power and no PDF, vsgl-math.md 5.3) and the normals of `surface`, then the mips.
+  // The padding is cleared when the source extent changes, so every recorded command buffer
+  // must be submitted.
   void record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface, const RsmView& view,
               const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr);
 
@@ -28,6 +30,7 @@ class VsglAttributes {
  private:
   uint32_t size_;
   std::string passPrefix_;
+  glm::uvec2 paddedExtent_{0u};  // source extent whose padding was last cleared
   engine::ComputeProgram program_;
   std::array<engine::Image, VSGL_ATTR_COUNT> pyramids_;
 };
