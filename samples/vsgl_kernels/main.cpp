@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -202,7 +203,23 @@ void drawCentre(Canvas& canvas, const Panel& panel, const glm::dvec3& kernel, ui
 struct RuleRun {
   const char* name;
   uint32_t rule;
+  std::vector<double> pdf;  // level 0 of the PDF this rule's frame warped
   std::vector<glm::dvec3> kernels;
+};
+
+// The BRSM's own resources: the additional camera G-buffer and both stages.
+struct BrsmPasses {
+  BrsmPasses(engine::Context& ctx, const Options& o)
+      : gbuffer(engine::createGBuffer(ctx, o.width, o.height)),
+        visibility(ctx, engine::Rasterizer::visibilityBytes(o.width, o.height),
+                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly),
+        importance(ctx, o.width, o.height, o.brsmSettings.importanceCount),
+        pdf(ctx, o.rsmSize, o.brsmSettings.gridSize) {}
+
+  engine::GBuffer gbuffer;
+  engine::Buffer visibility;
+  gi::ImportanceVsgls importance;
+  gi::BrsmPdf pdf;
 };
 
 // Every pass of one frame of VSGL generation, from the camera G-buffer to the VSGL buffer.
@@ -218,34 +235,32 @@ class Frame {
         rasterizer_(ctx),
         resolve_(ctx),
         mips_(ctx),
-        gbuffer_(engine::createGBuffer(ctx, o.width, o.height)),
-        visibility_(ctx, engine::Rasterizer::visibilityBytes(o.width, o.height),
-                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly),
-        importance_(ctx, o.width, o.height, o.brsmSettings.importanceCount),
         rsm_(ctx, o.rsmSize),
         attributes_(ctx, o.rsmSize),
-        brsm_(ctx, o.rsmSize, o.brsmSettings.gridSize),
-        generator_(ctx, o.count) {}
+        generator_(ctx, o.count) {
+    if (o.brsm) brsm_.emplace(ctx, o);
+  }
 
   const engine::Light& light() const { return light_; }
 
   void record(VkCommandBuffer cmd, uint32_t rule, engine::GpuProfiler* profiler) {
-    if (o_.brsm) {
+    if (brsm_) {
       {
         // The BRSM's additional G-buffer (a host could hand in its own instead).
         engine::ProfileScope scope(profiler, cmd, "brsm camera g-buffer");
         rasterizer_.record(cmd, scene_, cameraView_.viewProj,
-                           {&visibility_, 0, o_.width, o_.height});
-        resolve_.record(cmd, scene_, visibility_, cameraView_, gbuffer_);
+                           {&brsm_->visibility, 0, o_.width, o_.height});
+        resolve_.record(cmd, scene_, brsm_->visibility, cameraView_, brsm_->gbuffer);
       }
       // The importance VSGLs use the rule under test, as in [S3] Table 1's BRSM row.
-      importance_.record(cmd, gbuffer_, camera_, cameraView_,
-                         {o_.brsmSettings.importanceCount, 1.0f, rule}, mips_, profiler);
+      brsm_->importance.record(cmd, brsm_->gbuffer, camera_, cameraView_,
+                               {o_.brsmSettings.importanceCount, 1.0f, rule}, mips_, profiler);
     }
     rsm_.record(cmd, scene_, rasterizer_, resolve_, view_, light_, profiler);
     attributes_.record(cmd, rsm_.vpls(), rsm_.surface(), view_, mips_, profiler);
-    if (o_.brsm)
-      brsm_.record(cmd, attributes_, view_, importance_.vsgls(), o_.brsmSettings, mips_, profiler);
+    if (brsm_)
+      brsm_->pdf.record(cmd, attributes_, view_, brsm_->importance.vsgls(), o_.brsmSettings, mips_,
+                        profiler);
     generator_.record(cmd, attributes_, view_, {o_.count, o_.kernelScale, rule}, profiler);
   }
 
@@ -262,13 +277,10 @@ class Frame {
   engine::Rasterizer rasterizer_;
   engine::GBufferResolve resolve_;
   gi::MipPyramid mips_;
-  engine::GBuffer gbuffer_;
-  engine::Buffer visibility_;
-  gi::ImportanceVsgls importance_;
   gi::ReflectiveShadowMap rsm_;
   gi::VsglAttributes attributes_;
-  gi::BrsmPdf brsm_;
   gi::VsglGenerator generator_;
+  std::optional<BrsmPasses> brsm_;  // only with --pdf brsm
 };
 
 // A row of the timing table and the profiler passes it adds up.
@@ -366,23 +378,21 @@ int run(const Options& o) {
   else
     std::printf("PDF: flux-proportional\n");
 
-  std::vector<RuleRun> runs{{"Tok15 [T15]", VSGL_RULE_TOK15, {}},
-                            {"modified FIS [S3]", VSGL_RULE_MODIFIED, {}}};
-  std::vector<double> pdfBase;
+  std::vector<RuleRun> runs{{"Tok15 [T15]", VSGL_RULE_TOK15, {}, {}},
+                            {"modified FIS [S3]", VSGL_RULE_MODIFIED, {}, {}}};
   for (RuleRun& r : runs) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) { frame.record(cmd, r.rule, nullptr); });
-    if (pdfBase.empty()) {
-      // The PDF the generator warps: alpha of the diffuse-axis pyramid (vsgl_attributes.h).
-      for (const glm::vec4& t :
-           frame.attributes().pyramid(VSGL_ATTR_DIFFUSE_AXIS).readbackRgba32f(ctx, 0))
-        pdfBase.push_back(t.w);
-    }
+    // The PDF the generator warped: alpha of the diffuse-axis pyramid (vsgl_attributes.h). With
+    // the BRSM it differs between the rules, whose importance VSGLs differ.
+    for (const glm::vec4& t :
+         frame.attributes().pyramid(VSGL_ATTR_DIFFUSE_AXIS).readbackRgba32f(ctx, 0))
+      r.pdf.push_back(t.w);
     const auto vsgls = frame.vsgls().readbackAs<gpu::Vsgl>(ctx);
     for (uint32_t i = 0; i < o.count; ++i) r.kernels.emplace_back(glm::dvec3(vsgls[i].kernel));
   }
-  const gi::ScalarPyramid pdf = gi::makeScalarPyramid(pdfBase, o.rsmSize);
   for (const RuleRun& r : runs) {
-    const gi::KernelCoverage c = gi::measureCoverage(pdf, r.kernels);
+    const gi::KernelCoverage c =
+        gi::measureCoverage(gi::makeScalarPyramid(r.pdf, o.rsmSize), r.kernels);
     std::printf("%-18s PDF mass uncovered %6.2f %%, covered twice or more %6.2f %%, sum %6.2f %%\n",
                 r.name, 100.0 * c.uncoveredMass, 100.0 * c.multiplyCoveredMass,
                 100.0 * (c.uncoveredMass + c.multiplyCoveredMass));
@@ -396,7 +406,7 @@ int run(const Options& o) {
     for (int x = 0; x < kSeparatorWidth; ++x) canvas.set(panelSize + x, y, kSeparatorColour);
   for (size_t i = 0; i < runs.size(); ++i) {
     const Panel panel{int(i) * (panelSize + kSeparatorWidth), panelSize, scale};
-    drawPdf(canvas, panel, pdfBase, o.rsmSize);
+    drawPdf(canvas, panel, runs[i].pdf, o.rsmSize);
     // Centres on top of every square, so that none hides under a neighbour's outline.
     for (const glm::dvec3& k : runs[i].kernels) drawKernel(canvas, panel, k, o.rsmSize);
     for (const glm::dvec3& k : runs[i].kernels) drawCentre(canvas, panel, k, o.rsmSize);

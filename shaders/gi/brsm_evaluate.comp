@@ -26,7 +26,7 @@ layout(push_constant) uniform Push { BrsmEvaluatePush pc; };
 
 // A tile of importance lobes in shared memory, with the per-lobe constants of the incoming SG
 // (section 4.1) computed once per tile instead of once per cell: every cell of the group reads
-// the same lobes, and llvmpipe fetches storage-buffer structs lane by lane.
+// the same lobes (measured on lavapipe: 350 -> 290 ms at 64^2 cells x 2048 VSGLs).
 const uint kTile = BRSM_GROUP_X * BRSM_GROUP_Y;  // VSGLs per tile, 2 lobes each
 shared vec4 tileMeanVariance[2 * kTile];
 shared vec4 tileAxisSharpness[2 * kTile];

@@ -2,10 +2,11 @@
 // the camera's importance VSGLs (stage A: the camera G-buffer through the flux, attribute and
 // generation passes) "light" the RSM, and a texel's PDF is the importance its VPL reflects.
 //
-// brsm_evaluate.comp runs on a grid of cells, the RSM pyramids' level `level` (one cell = one
-// texel when the grid is the RSM's size). Each cell is a VPL cluster: its flux-weighted mean
-// position and the diffuse and glossy vMF lobes that the generation pass would build from the
-// same sums (sections 3.2-3.3). The importance a lobe c reflects per unit power is
+// brsm_evaluate.comp runs on a grid of cells, the RSM pyramids' level log2(size / gridSize)
+// (one cell = one texel when the grid is the RSM's size), bound as that level's views. Each cell is
+// a VPL cluster: its flux-weighted mean position and the diffuse and glossy vMF lobes that the
+// generation pass would build from the same sums (sections 3.2-3.3). The importance a lobe c
+// reflects per unit power is
 //   I_c = sum over importance lobes k of  integral W_k(w) vMF_c(w) dw,
 // W_k the importance VSGL's incoming SG at the cell (section 4.1) and vMF_c the cell lobe
 // normalised to integrate to 1: by reciprocity the image contribution of power Phi leaving
@@ -25,7 +26,7 @@
 #define BRSM_GROUP_Y 8
 // Importance lobes whose contribution exceeds this are clamped: a receiver exactly at a
 // zero-variance lobe's mean is a point singularity (section 12, case 12), and the clamp keeps
-// the PDF and its mean finite in fp32 (a sum of 2^24 such cells stays below FLT_MAX).
+// the PDF and its mips (means, never sums) finite in fp32.
 #define BRSM_MAX_IMPORTANCE 1e24
 
 SHARED_BEGIN
@@ -34,8 +35,8 @@ struct BrsmEvaluatePush {
   vec4 origin;           // xyz = RSM origin (world): cell positions are stored relative to it
   uint importanceCount;  // importance VSGLs in the buffer
   uint gridSize;         // cells per side (a power of two <= the pyramids' size)
-  uint level;            // pyramid level that holds the cells: log2(size / gridSize)
-  uint pad;
+  uint pad0;
+  uint pad1;
 };
 
 struct BrsmComposePush {

@@ -174,28 +174,37 @@ TEST_F(BrsmPdfTest, WithoutImportanceThePdfIsTheFluxPdf) {
   }
 }
 
-// A zero-variance importance lobe a micrometre from a lit cell's receiver point is a near
-// point singularity (vsgl-math.md section 12, case 12): the PDF must stay finite and non-negative.
+// A zero-variance, isotropic importance lobe a couple of micrometres from a lit cell's receiver
+// point is a near point singularity (vsgl-math.md section 12, case 12): its importance is huge
+// (about 4e12 here, the premise checked below), and the PDF must stay finite and non-negative.
 TEST_F(BrsmPdfTest, SingularImportanceKeepsThePdfFinite) {
   gi::BrsmPdf brsm(ctx(), kRsm, kRsm);
   runBrsm(brsm, importance_->vsgls(), {kImportance, kRsm, 0.1f});  // to find a lit texel
   const gi::AttributePyramids light = readLight();
-  const gi::VectorPyramid& wd = light[VSGL_ATTR_DIFFUSE_POWER];
+  auto base = [&](int attribute, size_t texel) { return light[attribute].levels[0][texel]; };
   size_t texel = 0;
-  while (!(wd.levels[0][texel].a > 0.0)) ++texel;
-  const glm::dvec3 y = glm::dvec3(light[VSGL_ATTR_DIFFUSE_POSITION].levels[0][texel]) /
-                       (wd.levels[0][texel].a + light[VSGL_ATTR_SPECULAR_POWER].levels[0][texel].a);
+  while (!(base(VSGL_ATTR_DIFFUSE_POWER, texel).a > 0.0)) ++texel;
+  // The cell's receiver point, as brsm_evaluate.comp forms it.
+  const glm::dvec3 y =
+      (glm::dvec3(base(VSGL_ATTR_DIFFUSE_POSITION, texel)) +
+       glm::dvec3(base(VSGL_ATTR_SPECULAR_POSITION, texel))) /
+      (base(VSGL_ATTR_DIFFUSE_POWER, texel).a + base(VSGL_ATTR_SPECULAR_POWER, texel).a);
   gpu::Vsgl spike{};
   spike.diffuse.meanVariance = glm::vec4(glm::dvec3(view_.origin) + y + glm::dvec3(1e-6), 0.0);
-  spike.diffuse.axisSharpness = glm::vec4(0.0f, 1.0f, 0.0f, float(VSGL_MAX_SHARPNESS));
+  spike.diffuse.axisSharpness = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);  // isotropic
   spike.diffuse.power = glm::vec4(1e3f);
   std::vector<gpu::Vsgl> single(1, spike);
   engine::Buffer buffer(ctx(), sizeof(gpu::Vsgl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                         engine::MemoryUsage::GpuOnly);
   buffer.upload(ctx(), std::span<const gpu::Vsgl>(single));
   runBrsm(brsm, buffer, {1, kRsm, 0.1f});
-  for (const glm::vec4& c : brsm.cells().readbackRgba32f(ctx(), 0))
+  float largest = 0.0f;
+  for (const glm::vec4& c : brsm.cells().readbackRgba32f(ctx(), 0)) {
     ASSERT_TRUE(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b) && c.r >= 0.0f);
+    largest = std::max({largest, c.r, c.g});
+  }
+  std::printf("largest cell importance next to the spike: %.3g\n", double(largest));
+  ASSERT_GT(largest, 1e9f) << "the spike must sit next to a receiver for the test to mean anything";
   for (double p : gpuPdf()) ASSERT_TRUE(std::isfinite(p) && p >= 0.0);
 }
 

@@ -92,7 +92,6 @@ void BrsmPdf::record(VkCommandBuffer cmd, VsglAttributes& light, const RsmView& 
     push.origin = glm::vec4(view.origin, 0.0f);
     push.importanceCount = settings.importanceCount;
     push.gridSize = gridSize_;
-    push.level = level;
     evaluate_.dispatch(cmd,
                        {Binding::storageImage(light.pyramid(0), level),
                         Binding::storageImage(light.pyramid(1), level),

@@ -21,7 +21,7 @@ struct BrsmSettings {
   uint32_t importanceCount = 2048;
   // Cells per side of the stage-B grid, a power of two in [1, RSM size]; the RSM size makes it
   // per texel. Within a cell the PDF follows the texels' flux. Cost ~ gridSize^2 x
-  // importanceCount (about 9 ns per cell and importance VSGL on lavapipe, 2 cores: 32^2 x 2048
+  // importanceCount (about 38 ns per cell and importance VSGL on lavapipe, 2 cores: 32^2 x 2048
   // = 80 ms, 64^2 x 2048 = 0.3 s).
   uint32_t gridSize = 32;
   // Share e in (0, 1] of the flux-proportional PDF mixed in: every lit texel keeps p > 0, so no
