@@ -64,6 +64,13 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
   return *this;
 }
 
+Buffer Buffer::borrow(VkBuffer buffer, VkDeviceSize size) {
+  Buffer borrowed;  // device_ stays null: release() destroys nothing
+  borrowed.buffer_ = buffer;
+  borrowed.size_ = size;
+  return borrowed;
+}
+
 void Buffer::release() {
   if (!device_) return;
   if (buffer_) vkDestroyBuffer(device_, buffer_, nullptr);

@@ -43,6 +43,11 @@ void computeToTransferBarrier(VkCommandBuffer cmd) {
                 VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
 }
 
+void initialLayout(Context& ctx, Image& image, VkImageLayout layout) {
+  ctx.initializeLayout(image.handle(), layout);
+  image.setLayout(layout);
+}
+
 void imageBarrier(VkCommandBuffer cmd, Image& image, VkImageLayout layout) {
   VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   barrier.srcStageMask = kComputeTransfer;

@@ -6,32 +6,13 @@
 #include <numbers>
 #include <string>
 
+#include "engine/brdf_reference.h"
 #include "engine/error.h"
 #include "engine/raster_reference.h"
 #include "shared/raster.h"
 
 namespace engine {
 namespace {
-
-// common/brdf.glsl's constants.
-constexpr double kMinAlpha = 1e-3;
-constexpr double kMinNv = 1e-4;
-
-double ggxD(double nh, double a2) {
-  double d = nh * nh * (a2 - 1.0) + 1.0;
-  return a2 / (std::numbers::pi * d * d);
-}
-
-double smithGgxCorrelatedV(double nv, double nl, double a2) {
-  double gv = nl * std::sqrt(nv * nv * (1.0 - a2) + a2);
-  double gl = nv * std::sqrt(nl * nl * (1.0 - a2) + a2);
-  return 0.5 / std::max(gv + gl, 1e-12);
-}
-
-glm::dvec3 schlickFresnel(glm::dvec3 f0, double vh) {
-  double m = 1.0 - vh;
-  return f0 + (1.0 - f0) * std::pow(m, 5.0);
-}
 
 // fp32's unit roundoff and Higham's gamma_n = n u / (1 - n u): an n-term dot product (or n
 // chained roundings) evaluated in fp32 errs by at most gamma_n times the sum of |terms|.
@@ -53,14 +34,11 @@ struct Brdf {
 
 Brdf brdfCos(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, const GBufferSample& s) {
   double nl = glm::dot(n, l);
-  double nv = std::max(glm::dot(n, v), kMinNv);
   if (nl <= 0.0) return {};
   double alpha = std::max(s.roughness * s.roughness, kMinAlpha);
   double a2 = alpha * alpha;
-  glm::dvec3 h = glm::normalize(v + l);
-  double nh = std::max(glm::dot(n, h), 0.0);
-  glm::dvec3 spec = ggxD(nh, a2) * smithGgxCorrelatedV(nv, nl, a2) *
-                    schlickFresnel(s.f0, std::max(glm::dot(v, h), 0.0));
+  double nh = std::max(glm::dot(n, glm::normalize(v + l)), 0.0);
+  glm::dvec3 spec = ggxSpecular(n, v, l, s.f0, s.roughness);
   double d = nh * nh * (a2 - 1.0) + 1.0;
   double dRelative = (4.0 * nh * (1.0 - a2) * fp32Gamma(16) + 2.0 * fp32Gamma(4)) / d;
   glm::dvec3 specCos = spec * nl;

@@ -26,10 +26,8 @@ GBuffer createGBuffer(Context& ctx, uint32_t width, uint32_t height) {
   g.normal = storageImage(ctx, width, height, VK_FORMAT_R16G16_SNORM);
   g.diffuse = storageImage(ctx, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
   g.specular = storageImage(ctx, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    for (Image* image : {&g.depth, &g.normal, &g.diffuse, &g.specular})
-      imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_GENERAL);
-  });
+  for (Image* image : {&g.depth, &g.normal, &g.diffuse, &g.specular})
+    initialLayout(ctx, *image, VK_IMAGE_LAYOUT_GENERAL);
   return g;
 }
 

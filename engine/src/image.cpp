@@ -69,6 +69,15 @@ Image::Image(Context& ctx, const ImageDesc& desc) : device_(ctx.device()), desc_
   }
 }
 
+Image Image::borrow(VkImage image, VkImageView view, const ImageDesc& desc, VkImageLayout layout) {
+  Image borrowed;  // device_ stays null: release() destroys nothing
+  borrowed.image_ = image;
+  borrowed.view_ = view;
+  borrowed.desc_ = desc;
+  borrowed.layout_ = layout;
+  return borrowed;
+}
+
 Image::~Image() {
   release();
 }
@@ -174,8 +183,14 @@ Sampler::Sampler(Context& ctx, VkSamplerAddressMode address) : device_(ctx.devic
   VK_CHECK(vkCreateSampler(device_, &info, nullptr, &sampler_));
 }
 
+Sampler Sampler::borrow(VkSampler sampler) {
+  Sampler borrowed;  // device_ stays null: nothing is destroyed
+  borrowed.sampler_ = sampler;
+  return borrowed;
+}
+
 Sampler::~Sampler() {
-  if (sampler_) vkDestroySampler(device_, sampler_, nullptr);
+  if (device_ && sampler_) vkDestroySampler(device_, sampler_, nullptr);
 }
 
 Sampler::Sampler(Sampler&& other) noexcept {
@@ -184,7 +199,7 @@ Sampler::Sampler(Sampler&& other) noexcept {
 
 Sampler& Sampler::operator=(Sampler&& other) noexcept {
   if (this != &other) {
-    if (sampler_) vkDestroySampler(device_, sampler_, nullptr);
+    if (device_ && sampler_) vkDestroySampler(device_, sampler_, nullptr);
     device_ = std::exchange(other.device_, VK_NULL_HANDLE);
     sampler_ = std::exchange(other.sampler_, VK_NULL_HANDLE);
   }

@@ -36,13 +36,16 @@ void GpuProfiler::end(VkCommandBuffer cmd, uint32_t scope) {
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope + 1);
 }
 
-std::vector<PassTime> GpuProfiler::results() const {
+std::vector<PassTime> GpuProfiler::results(bool wait) const {
   std::vector<PassTime> out;
   if (names_.empty()) return out;
   std::vector<uint64_t> ticks(2 * names_.size());
-  VK_CHECK(vkGetQueryPoolResults(ctx_.device(), pool_, 0, static_cast<uint32_t>(ticks.size()),
-                                 ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
-                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  const VkResult status =
+      vkGetQueryPoolResults(ctx_.device(), pool_, 0, static_cast<uint32_t>(ticks.size()),
+                            ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                            VK_QUERY_RESULT_64_BIT | (wait ? VK_QUERY_RESULT_WAIT_BIT : 0));
+  if (status == VK_NOT_READY) return out;
+  VK_CHECK(status);
   for (size_t i = 0; i < names_.size(); ++i) {
     double ms = static_cast<double>(ticks[2 * i + 1] - ticks[2 * i]) * nsPerTick_ * 1e-6;
     auto it = std::find_if(out.begin(), out.end(),

@@ -284,7 +284,26 @@ Context::Context(const ContextOptions& options) {
   VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &fence_));
 }
 
+Context::Context(const ExternalDevice& external) : borrowed_(true) {
+  if (!external.instance || !external.physicalDevice || !external.device)
+    throw Error("ExternalDevice: instance, physicalDevice and device must all be set");
+  instance_ = external.instance;
+  physicalDevice_ = external.physicalDevice;
+  device_ = external.device;
+  queueFamily_ = external.queueFamily;
+  info_ = describe(physicalDevice_, 0);
+  vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
+  vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+  if (properties_.apiVersion < VK_API_VERSION_1_3)
+    throw Error("ExternalDevice: '" + info_.name + "' is not a Vulkan 1.3 device");
+  cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+      vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+  if (!cmdPushDescriptorSet)
+    throw Error("ExternalDevice: VK_KHR_push_descriptor is not enabled on the device");
+}
+
 Context::~Context() {
+  if (borrowed_) return;  // the host destroys its own device and instance
   if (device_) {
     vkDeviceWaitIdle(device_);
     vkDestroyFence(device_, fence_, nullptr);
@@ -321,6 +340,8 @@ std::vector<std::string> Context::validationMessages() const {
 }
 
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+  if (borrowed_)
+    throw Error("internal: submitAndWait on a host's device (the module only records commands)");
   VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   alloc.commandPool = commandPool_;
   alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -341,6 +362,31 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
   VK_CHECK(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX));
   VK_CHECK(vkResetFences(device_, 1, &fence_));
   vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
+}
+
+void Context::initializeLayout(VkImage image, VkImageLayout layout) {
+  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
+  barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  barrier.newLayout = layout;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0,
+                              VK_REMAINING_ARRAY_LAYERS};
+  deferredLayouts_.push_back(barrier);
+  if (!borrowed_) submitAndWait([&](VkCommandBuffer cmd) { recordDeferredSetup(cmd); });
+}
+
+void Context::recordDeferredSetup(VkCommandBuffer cmd) {
+  if (deferredLayouts_.empty()) return;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.imageMemoryBarrierCount = static_cast<uint32_t>(deferredLayouts_.size());
+  dep.pImageMemoryBarriers = deferredLayouts_.data();
+  vkCmdPipelineBarrier2(cmd, &dep);
+  deferredLayouts_.clear();
 }
 
 uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,

@@ -3,11 +3,29 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
+#include <string>
 #include <string_view>
+#include <utility>
+
+#include "engine/error.h"
 
 namespace samples {
 
 uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi);
 float parseFloat(std::string_view option, std::string_view text, float lo, float hi);
+
+// One of a fixed set of words, e.g. --ism on|off; anything else names the accepted words.
+template <class T>
+T parseChoice(std::string_view option, std::string_view text,
+              std::initializer_list<std::pair<std::string_view, T>> choices) {
+  std::string accepted;
+  for (const auto& [word, value] : choices) {
+    if (word == text) return value;
+    accepted += (accepted.empty() ? "" : ", ") + std::string(word);
+  }
+  throw engine::Error(std::string(option) + ": '" + std::string(text) + "' is not one of " +
+                      accepted);
+}
 
 }  // namespace samples

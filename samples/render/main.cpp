@@ -1,6 +1,9 @@
-// vsgl_render: renders a glTF or built-in scene with the compute rasterizer and direct light,
-// writes a linear EXR and a tone-mapped PNG, and prints per-pass GPU times (median of the
-// measured frames, after a warm-up frame that pays for pipeline compilation).
+// vsgl_render: renders a glTF or built-in scene with the compute rasterizer, direct light and
+// one-bounce VSGL indirect light, writes linear EXRs, tone-mapped PNGs and debug pictures, and
+// prints per-pass GPU times (median of the measured frames, after a warm-up frame that pays
+// for pipeline compilation). It is a host renderer like any other: the engine library renders
+// its G-buffer and direct light, and the indirect light comes only through the public API of
+// gi/include (docs/integration.md).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -8,15 +11,19 @@
 #include <filesystem>
 #include <map>
 
+#include "debug_views.h"
 #include "engine/builtin_scenes.h"
 #include "engine/commands.h"
 #include "engine/direct_light.h"
 #include "engine/gbuffer.h"
 #include "engine/gltf.h"
 #include "engine/image_io.h"
+#include "engine/machine_peak.h"
 #include "engine/rasterizer.h"
 #include "engine/tonemap.h"
 #include "engine/view.h"
+#include "gi/indirect_lighting.h"
+#include "gi_host.h"
 #include "options.h"
 #include "program_exit.h"
 
@@ -83,53 +90,77 @@ int run(const render::Options& o) {
   radianceDesc.height = o.height;
   radianceDesc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   engine::Image radiance(ctx, radianceDesc);
-  ctx.submitAndWait(
-      [&](VkCommandBuffer cmd) { engine::imageBarrier(cmd, radiance, VK_IMAGE_LAYOUT_GENERAL); });
+  engine::initialLayout(ctx, radiance, VK_IMAGE_LAYOUT_GENERAL);
+
+  std::unique_ptr<gi::IndirectLighting> indirect;
+  const engine::Light* bouncing = render::bouncingLight(scene);
+  if (o.indirect && bouncing) indirect = render::createIndirect(ctx, o, gpuScene, scene);
+  if (o.indirect && !bouncing)
+    std::printf("indirect: skipped, the scene has no spot or directional light to bounce\n");
+  gi::FrameInput input;
+  if (indirect) input = render::frameInput(gbuffer, view, *bouncing);
 
   engine::GpuProfiler profiler(ctx);
-  std::map<std::string, std::vector<double>> passTimes;
-  std::vector<std::string> passOrder;
-  std::vector<double> frameTimes;
+  render::PassTable passTimes;
+  gi::FrameOutput output;
   for (uint32_t frame = 0; frame <= o.frames; ++frame) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       profiler.beginFrame(cmd);
-      engine::ProfileScope total(&profiler, cmd, "frame");
+      engine::ProfileScope total(&profiler, cmd, "host frame");
       rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, o.width, o.height},
                         &profiler);
       resolve.record(cmd, gpuScene, visibility, view, gbuffer, &profiler);
       direct.record(cmd, gpuScene, rasterizer, gbuffer, view, radiance, &profiler);
+      if (indirect) render::check(indirect->record(cmd, input, &output));
     });
     if (frame == 0) continue;  // warm-up: pipelines compile at their first dispatch
-    for (const auto& pass : profiler.results()) {
-      if (pass.name == "frame") {
-        frameTimes.push_back(pass.ms);
-        continue;
-      }
-      if (!passTimes.count(pass.name)) passOrder.push_back(pass.name);
-      passTimes[pass.name].push_back(pass.ms);
-    }
+    for (const auto& pass : profiler.results()) passTimes.add(pass.name, pass.ms);
+    if (indirect)
+      for (const auto& pass : indirect->lastFrameTimes()) passTimes.add("gi " + pass.name, pass.ms);
   }
+  passTimes.print(o.frames, indirect ? o.gi.vsglCount : 0, o.width * o.height);
+  // The machine's FMA peak in the same run, to read the pass times against (benchmarks report
+  // fractions of it; absolute times on a shared machine drift).
+  const engine::FmaPeak peak = engine::measureFmaPeak(ctx);
+  std::printf("device FMA peak (measured now): %.1f GFLOP/s\n", peak.gflops);
 
-  std::printf("GPU time per pass, median of %u frames (ms):\n", o.frames);
-  for (const auto& name : passOrder)
-    std::printf("  %-18s %9.3f\n", name.c_str(), engine::median(passTimes[name]));
-  std::printf("  %-18s %9.3f\n", "frame total", engine::median(frameTimes));
-
-  std::vector<glm::vec4> texels = radiance.readbackRgba32f(ctx);
-  engine::ImageRgba32f image;
-  image.width = static_cast<int>(o.width);
-  image.height = static_cast<int>(o.height);
-  image.pixels.assign(&texels.data()->x, &texels.data()->x + 4 * texels.size());
   std::string base = (std::filesystem::path(o.outDir) / stem).string();
   // Built-in scenes exist only as code; a .gltf copy lets other tools open the same scene.
   if (isBuiltin(o.scene)) engine::writeGltf(scene, base + ".gltf");
-  engine::writeExr(base + ".exr", image);
+  engine::ImageRgba32f image = render::readRadiance(ctx, radiance);
   engine::ToneMapSettings toneMap{o.exposureEv};
-  engine::writePng(base + ".png", image.width, image.height, engine::toneMap(image, toneMap));
+  if (indirect) {
+    render::Indirect result = render::readIndirect(ctx, output, o.width, o.height);
+    render::addInto(image, result.diffuse);
+    render::addInto(image, result.glossy);
+    engine::ImageRgba32f only = result.diffuse;
+    render::addInto(only, result.glossy);
+    render::writePair(base + "_indirect", only, toneMap);
+    std::vector<uint8_t> frameRgba = engine::toneMap(image, toneMap);
+    std::vector<gpu::Vsgl> vsgls = render::readVsgls(ctx, output);
+    engine::writePng(
+        base + "_vsgls.png", image.width, image.height,
+        render::drawVsglLobes(frameRgba, image.width, image.height, vsgls, view.viewProj));
+    if (o.gi.ismEnabled) {
+      // One more frame with the chosen VSGL's visibility written out.
+      const uint32_t k = o.debugVsgl >= 0 ? uint32_t(o.debugVsgl) : render::brightestVsgl(vsgls);
+      gi::Settings debug = indirect->settings();
+      debug.debugVsgl = int32_t(k);
+      render::check(indirect->setSettings(debug));
+      ctx.submitAndWait(
+          [&](VkCommandBuffer cmd) { render::check(indirect->record(cmd, input, &output)); });
+      engine::writePng(base + "_visibility.png", image.width, image.height,
+                       render::greyscale(render::readVisibility(ctx, output, o.width, o.height)));
+      std::printf("wrote %s_visibility.png (ISM visibility of VSGL %u)\n", base.c_str(), k);
+    }
+  }
+  render::writePair(base, image, toneMap);
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   std::printf(
-      "wrote %s.exr (linear) and %s.png (exposure x%.3g, ACES filmic, sRGB) in %.2f s wall\n",
-      base.c_str(), base.c_str(), engine::exposureScale(image, toneMap), wall);
+      "wrote %s.exr (linear) and %s.png (exposure x%.3g, ACES filmic, sRGB)%s in %.2f s "
+      "wall\n",
+      base.c_str(), base.c_str(), engine::exposureScale(image, toneMap),
+      indirect ? ", _indirect.{exr,png}, _vsgls.png" : "", wall);
   return samples::validationExitStatus(ctx, "vsgl_render");
 }
 

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "gi/settings.h"
+
 namespace render {
 
 struct Options {
@@ -13,7 +15,7 @@ struct Options {
   std::string outDir = "out";
   uint32_t width = 640;
   uint32_t height = 360;
-  uint32_t frames = 5;            // measured frames after one warm-up frame
+  uint32_t frames = 3;            // measured frames after one warm-up frame
   uint32_t shadowResolution = 0;  // 0 = automatic: see shadowResolutionFor()
   bool shadows = true;
   std::optional<float> exposureEv;
@@ -22,6 +24,11 @@ struct Options {
   bool listDevices = false;
   std::string exportGltf;  // write the (built-in) scene as .gltf to this path
   bool help = false;
+  // Indirect light through the public API (gi/include); indirect = false renders direct only.
+  bool indirect = true;
+  gi::Settings gi;
+  // VSGL whose ISM visibility becomes the debug picture; -1 = the most powerful one.
+  int32_t debugVsgl = -1;
 };
 
 // Shadow maps with about as many texels across the lit area as the image has pixels: the

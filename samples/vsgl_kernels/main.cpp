@@ -88,12 +88,9 @@ Options parseOptions(int argc, char** argv) {
       o.kernelScale = samples::parseFloat(arg, kText = value(), 1.0f, 65536.0f);
     else if (arg == "--frames")
       o.frames = samples::parseUint(arg, value(), 1, 100);
-    else if (arg == "--pdf") {
-      const std::string_view kind = value();
-      if (kind != "brsm" && kind != "flux")
-        throw Error("--pdf: '" + std::string(kind) + "' is neither brsm nor flux");
-      o.brsm = kind == "brsm";
-    } else if (arg == "--importance")
+    else if (arg == "--pdf")
+      o.brsm = samples::parseChoice<bool>(arg, value(), {{"brsm", true}, {"flux", false}});
+    else if (arg == "--importance")
       o.brsmSettings.importanceCount = samples::parseUint(arg, value(), 1, 65536);
     else if (arg == "--brsm-grid")
       o.brsmSettings.gridSize = samples::parseUint(arg, value(), 1, 2048);
@@ -253,7 +250,7 @@ class Frame {
         resolve_.record(cmd, scene_, brsm_->visibility, cameraView_, brsm_->gbuffer);
       }
       // The importance VSGLs use the rule under test, as in [S3] Table 1's BRSM row.
-      brsm_->importance.record(cmd, brsm_->gbuffer, camera_, cameraView_,
+      brsm_->importance.record(cmd, brsm_->gbuffer, cameraView_,
                                {o_.brsmSettings.importanceCount, 1.0f, rule}, mips_, profiler);
     }
     rsm_.record(cmd, scene_, rasterizer_, resolve_, view_, light_, profiler);

@@ -1,5 +1,7 @@
 #include "gpu_fixture.h"
 
+#include "engine/rasterizer.h"
+
 namespace testing_gpu {
 namespace {
 
@@ -44,6 +46,19 @@ void GpuTest::TearDown() {
   EXPECT_EQ(context()->validationMessageCount(), messagesBefore_)
       << "validation layer messages during the test; last: "
       << (messages.empty() ? std::string("-") : messages.back());
+}
+
+engine::GBuffer GpuTest::renderGBuffer(const engine::SceneGpu& scene, const engine::View& view) {
+  engine::GBuffer gbuffer = engine::createGBuffer(ctx(), view.width, view.height);
+  engine::Rasterizer rasterizer(ctx());
+  engine::GBufferResolve resolve(ctx());
+  engine::Buffer visibility(ctx(), engine::Rasterizer::visibilityBytes(view.width, view.height),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    rasterizer.record(cmd, scene, view.viewProj, {&visibility, 0, view.width, view.height});
+    resolve.record(cmd, scene, visibility, view, gbuffer);
+  });
+  return gbuffer;
 }
 
 }  // namespace testing_gpu

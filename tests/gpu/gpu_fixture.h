@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "engine/gbuffer.h"
 #include "engine/vk_context.h"
 
 namespace testing_gpu {
@@ -21,6 +22,9 @@ class GpuTest : public ::testing::Test {
   void TearDown() override;
 
   engine::Context& ctx() { return *context(); }
+
+  // The camera G-buffer of `scene` seen through `view`, rasterised and resolved (blocking).
+  engine::GBuffer renderGBuffer(const engine::SceneGpu& scene, const engine::View& view);
 
  private:
   uint32_t messagesBefore_ = 0;

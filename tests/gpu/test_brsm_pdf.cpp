@@ -40,8 +40,8 @@ class BrsmPdfTest : public testing_gpu::GpuTest {
       rasterizer_->record(cmd, *gpuScene_, cameraView_.viewProj,
                           {visibility_.get(), 0, kWidth, kHeight});
       resolve_->record(cmd, *gpuScene_, *visibility_, cameraView_, *gbuffer_);
-      importance_->record(cmd, *gbuffer_, camera_, cameraView_,
-                          {kImportance, 1.0f, VSGL_RULE_MODIFIED}, *mips_);
+      importance_->record(cmd, *gbuffer_, cameraView_, {kImportance, 1.0f, VSGL_RULE_MODIFIED},
+                          *mips_);
     });
   }
 

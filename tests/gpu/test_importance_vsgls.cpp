@@ -19,7 +19,7 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
   engine::Scene scene = engine::makeBuiltinScene("cornell");
   const engine::Camera& camera = scene.cameras.at(0);
   engine::View view = engine::cameraView(camera, width, height);
-  gi::RsmView importance = gi::cameraImportanceView(camera, view);
+  gi::RsmView importance = gi::cameraImportanceView(view);
 
   engine::SceneGpu gpuScene = engine::uploadScene(ctx(), scene);
   engine::Rasterizer rasterizer(ctx());

@@ -21,6 +21,8 @@ class Buffer {
  public:
   Buffer() = default;
   Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory);
+  // A non-owning Buffer for someone else's buffer (a host's scene geometry).
+  static Buffer borrow(VkBuffer buffer, VkDeviceSize size);
   ~Buffer();
   Buffer(Buffer&& other) noexcept;
   Buffer& operator=(Buffer&& other) noexcept;

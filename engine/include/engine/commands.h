@@ -20,6 +20,10 @@ void computeToTransferBarrier(VkCommandBuffer cmd);
 // Moves `image` to `layout` with a full compute/transfer dependency and records the layout.
 void imageBarrier(VkCommandBuffer cmd, Image& image, VkImageLayout layout);
 
+// Gives a newly created image its first layout (Context::initializeLayout: immediately on an
+// owned device, at the next recordDeferredSetup on a host's) and records it in the Image.
+void initialLayout(Context& ctx, Image& image, VkImageLayout layout);
+
 // Fills a buffer range with a 32-bit pattern (vkCmdFillBuffer), ordered after earlier shader
 // accesses and made visible to later compute and indirect reads.
 void fillBuffer(VkCommandBuffer cmd, const Buffer& buffer, uint32_t pattern,

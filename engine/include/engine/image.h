@@ -25,6 +25,9 @@ class Image {
  public:
   Image() = default;
   Image(Context& ctx, const ImageDesc& desc);
+  // A non-owning Image for someone else's image (a host's G-buffer): nothing is destroyed with
+  // it. `view` must cover the image's one level; `layout` is its current layout.
+  static Image borrow(VkImage image, VkImageView view, const ImageDesc& desc, VkImageLayout layout);
   ~Image();
   Image(Image&& other) noexcept;
   Image& operator=(Image&& other) noexcept;
@@ -69,6 +72,7 @@ class Sampler {
  public:
   Sampler() = default;
   explicit Sampler(Context& ctx, VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT);
+  static Sampler borrow(VkSampler sampler);  // non-owning, like Image::borrow
   ~Sampler();
   Sampler(Sampler&& other) noexcept;
   Sampler& operator=(Sampler&& other) noexcept;

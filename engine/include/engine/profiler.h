@@ -27,8 +27,9 @@ class GpuProfiler {
   void end(VkCommandBuffer cmd, uint32_t scope);
 
   // Per-pass times of the last recorded frame; valid once its submission has completed.
-  // Scopes with the same name are summed (e.g. one shadow pass per light).
-  std::vector<PassTime> results() const;
+  // Scopes with the same name are summed (e.g. one shadow pass per light). With wait = false
+  // (a host's device, where we never wait) an unfinished frame gives an empty list.
+  std::vector<PassTime> results(bool wait = true) const;
 
  private:
   Context& ctx_;

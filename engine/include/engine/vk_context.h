@@ -42,9 +42,22 @@ struct DeviceInfo {
   std::string unsuitableReason;  // empty when the device has everything we need
 };
 
+// A device that someone else created and owns (a host renderer). It must be Vulkan 1.3 with
+// synchronization2 and maintenance4, VK_KHR_push_descriptor, shaderInt64 and
+// shaderBufferInt64Atomics enabled (docs/integration.md).
+struct ExternalDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;  // the family of the queue the host submits our commands to
+};
+
 class Context {
  public:
   explicit Context(const ContextOptions& options = {});
+  // Borrows a host's device: destroys nothing, never submits or waits (submitAndWait throws),
+  // and defers one-time setup commands (initial image layouts) to recordDeferredSetup().
+  explicit Context(const ExternalDevice& external);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -68,6 +81,14 @@ class Context {
   // Records commands with `record`, submits them and waits. For uploads, tests and tools; a
   // frame recorded into a host command buffer never calls this (the host submits).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+  bool borrowed() const { return borrowed_; }
+
+  // Moves a newly created image from UNDEFINED to `layout` over its whole range: at once with
+  // submitAndWait on an owned device; on a borrowed one the barrier waits for the next
+  // recordDeferredSetup (the image's tracked layout changes now, so the setup must be recorded
+  // before any command that uses the image).
+  void initializeLayout(VkImage image, VkImageLayout layout);
+  void recordDeferredSetup(VkCommandBuffer cmd);
 
   uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                           VkMemoryPropertyFlags preferred) const;
@@ -81,6 +102,8 @@ class Context {
                                            void* user);
 
   bool validation_ = false;
+  bool borrowed_ = false;
+  std::vector<VkImageMemoryBarrier2> deferredLayouts_;
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;

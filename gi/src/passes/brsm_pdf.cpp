@@ -36,15 +36,14 @@ ImportanceVsgls::ImportanceVsgls(engine::Context& ctx, uint32_t width, uint32_t 
       generator_(ctx, maxCount, "brsm ") {}
 
 void ImportanceVsgls::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
-                             const engine::Camera& camera, const engine::View& view,
-                             const VsglSettings& settings, const MipPyramid& mips,
-                             engine::GpuProfiler* profiler) {
+                             const engine::View& view, const VsglSettings& settings,
+                             const MipPyramid& mips, engine::GpuProfiler* profiler) {
   if (view.width != vpls_.width || view.height != vpls_.height)
     throw engine::Error("BRSM importance: view " + std::to_string(view.width) + "x" +
                         std::to_string(view.height) + " differs from the " +
                         std::to_string(vpls_.width) + "x" + std::to_string(vpls_.height) +
                         " G-buffer it was created for");
-  const RsmView importance = cameraImportanceView(camera, view);
+  const RsmView importance = cameraImportanceView(view);
   // Unit emission without falloff: a pixel's weight is its reflectance times its solid angle.
   flux_.record(cmd, gbuffer, importance, FluxSource{}, vpls_, profiler);
   attributes_.record(cmd, vpls_, gbuffer, importance, mips, profiler);

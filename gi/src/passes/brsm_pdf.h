@@ -11,23 +11,10 @@
 
 #include <string>
 
+#include "gi/settings.h"
 #include "passes/vsgl_generate.h"
 
 namespace gi {
-
-struct BrsmSettings {
-  // Importance VSGLs generated from the camera G-buffer, [1, 65536] ([S3]: 2048). Cost: stage B
-  // is linear in it (cells x count x 4 SG inner products); generation is negligible.
-  uint32_t importanceCount = 2048;
-  // Cells per side of the stage-B grid, a power of two in [1, RSM size]; the RSM size makes it
-  // per texel. Within a cell the PDF follows the texels' flux. Cost ~ gridSize^2 x
-  // importanceCount (about 38 ns per cell and importance VSGL on lavapipe, 2 cores: 32^2 x 2048
-  // = 80 ms, 64^2 x 2048 = 0.3 s).
-  uint32_t gridSize = 32;
-  // Share e in (0, 1] of the flux-proportional PDF mixed in: every lit texel keeps p > 0, so no
-  // light is lost where the importance estimate is zero; 1 = the flux PDF. No cost.
-  float fluxMix = 0.1f;
-};
 
 // Throws engine::Error naming the field when a setting is outside its range (rsmSize: the
 // light's pyramid size).
@@ -41,8 +28,8 @@ class ImportanceVsgls {
 
   // `gbuffer`: the camera's G-buffer of the size given at construction, seen through `view`.
   // `settings.count` = BrsmSettings::importanceCount; [S3] uses K = 1 and the final VSGLs' rule.
-  void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::Camera& camera,
-              const engine::View& view, const VsglSettings& settings, const MipPyramid& mips,
+  void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& view,
+              const VsglSettings& settings, const MipPyramid& mips,
               engine::GpuProfiler* profiler = nullptr);
 
   const engine::Buffer& vsgls() const { return generator_.vsgls(); }  // gpu::Vsgl[count]

@@ -17,8 +17,7 @@ engine::Image createPyramid(engine::Context& ctx, uint32_t size) {
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   engine::Image image(ctx, desc);
-  ctx.submitAndWait(
-      [&](VkCommandBuffer cmd) { engine::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_GENERAL); });
+  engine::initialLayout(ctx, image, VK_IMAGE_LAYOUT_GENERAL);
   return image;
 }
 

@@ -16,9 +16,12 @@ double frustumSolidAngle(double halfAngle) {
 }
 
 RsmView makeRsmView(const engine::Scene& scene, const engine::Light& light, uint32_t size) {
+  return makeRsmView(scene.bounds(), light, size);
+}
+
+RsmView makeRsmView(const engine::Bounds& bounds, const engine::Light& light, uint32_t size) {
   RsmView r;
   r.axis = glm::normalize(light.direction);
-  engine::Bounds bounds = scene.bounds();
   const float texels = static_cast<float>(size);
   if (light.type == engine::LightType::Spot) {
     if (light.outerConeAngle > kMaxRsmHalfAngle)
@@ -61,15 +64,16 @@ FluxSource lightFluxSource(const engine::Light& light) {
   return source;
 }
 
-RsmView cameraImportanceView(const engine::Camera& camera, const engine::View& view) {
+RsmView cameraImportanceView(const engine::View& view) {
   RsmView r;
   r.view = view;
   glm::mat4 rotation = view.view;
   rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   r.invViewProjRelative = glm::inverse(view.proj * rotation);
-  r.origin = glm::vec3(camera.cameraToWorld[3]);
-  r.axis = -glm::normalize(glm::vec3(glm::inverse(view.view)[2]));
-  r.perspective = camera.perspective;
+  const glm::mat4 cameraToWorld = glm::inverse(view.view);
+  r.origin = glm::vec3(cameraToWorld[3]);
+  r.axis = -glm::normalize(glm::vec3(cameraToWorld[2]));
+  r.perspective = view.proj[3][3] == 0.0f;  // a perspective projection has no constant w term
   // Pixel side on the plane at unit distance (or in metres) from the projection's own scale,
   // so the camera's aspect ratio, however it was chosen, is honoured.
   float sideX = 2.0f / (view.proj[0][0] * static_cast<float>(view.width));
@@ -95,10 +99,8 @@ engine::Image fluxImage(engine::Context& ctx, uint32_t width, uint32_t height) {
 VplImages createVplImages(engine::Context& ctx, uint32_t width, uint32_t height) {
   VplImages v{fluxImage(ctx, width, height), fluxImage(ctx, width, height),
               fluxImage(ctx, width, height), width, height};
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    for (engine::Image* image : {&v.position, &v.diffuse, &v.specular})
-      engine::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_GENERAL);
-  });
+  for (engine::Image* image : {&v.position, &v.diffuse, &v.specular})
+    engine::initialLayout(ctx, *image, VK_IMAGE_LAYOUT_GENERAL);
   return v;
 }
 

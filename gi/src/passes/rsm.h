@@ -27,6 +27,9 @@ struct RsmView {
 
 // Throws engine::Error for point lights and for spots wider than kMaxRsmHalfAngle.
 RsmView makeRsmView(const engine::Scene& scene, const engine::Light& light, uint32_t size);
+// The same from the scene's bounds (all the scene the view needs: its depth range and, for a
+// directional light, the orthographic box).
+RsmView makeRsmView(const engine::Bounds& bounds, const engine::Light& light, uint32_t size);
 
 // A single perspective view cannot hold a cone much wider than this (texel density at its rim
 // falls as cos^3); wider spot lights are refused rather than sampled badly.
@@ -48,7 +51,7 @@ FluxSource lightFluxSource(const engine::Light& light);
 // without falloff at the eye, so the same flux / attribute / generation passes turn camera pixels
 // into importance VSGLs (Tokuyoshi's BRSM stage A). Works for non-square images; texelArea is
 // the pixel's area on the plane at unit distance (perspective) or in m^2 (orthographic).
-RsmView cameraImportanceView(const engine::Camera& camera, const engine::View& view);
+RsmView cameraImportanceView(const engine::View& view);
 
 // The flux pass's outputs (formats: shaders/shared/rsm_flux.h), width x height RGBA32F.
 struct VplImages {

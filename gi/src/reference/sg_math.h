@@ -105,4 +105,54 @@ VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 
 glm::dvec3 vsglDiffuseRadiance(const gpu::VsglLobe& lobe, glm::dvec3 receiver, glm::dvec3 normal,
                                glm::dvec3 albedo);
 
+// ---------------------------------------------------------------------------------------------
+// Glossy: SG light x the GGX specular lobe of shaders/common/brdf.glsl (section 4.4), ported to
+// fp32 in shaders/common/sg_lighting.glsl with the same structure. Derivation, measured errors and
+// bad regimes: docs/techniques/sg-lighting.md ("Glossy").
+
+// alpha = roughness^2 is floored here as brdf.glsl floors it, and n . v as brdf.glsl clamps it.
+constexpr double kSgGgxMinAlpha = 1e-3;
+constexpr double kSgGgxMinViewCosine = 1e-4;
+
+// (1 + beta) (1 - beta e^beta E1(beta)): the ratio between the exact peak of a 2-D Student-t
+// lobe of scale a (the small-angle GGX reflection lobe) convolved with a Gaussian of variance
+// a^2 / (2 beta) and the peak 1 / (1 + beta) that adding the two lobes' variances predicts. 1 at
+// beta = 0 and beta -> infinity, 0.804 at its minimum (beta = 0.72). E1 from Abramowitz and Stegun
+// 5.1.53 (beta <= 1, |error| < 2e-7) and 5.1.54 (beta > 1, |error| < 2e-8), the asymptotic series
+// above beta = 100; relative error 1.9e-6 (tests/unit/test_sg_math.cpp). beta = +inf gives 1.
+double sgGgxPeakCorrection(double beta);
+
+// Directional albedo of brdf.glsl's specular lobe, integral of f_spec(w, v) (w . n)^+ dw, with
+// f0 = 0 (x) and f0 = 1 (y); with Schlick's Fresnel the albedo at any f0 is x + f0 (y - x). A
+// 17 x 17 table over (sqrt(n . v), sqrt(alpha)) computed by quadrature (the unit test
+// re-derives its nodes), read bilinearly. nv and alpha are clamped like brdf.glsl.
+glm::dvec2 ggxSpecularAlbedo(double nv, double alpha);
+// The table's node (i, j), 0 <= i, j < kGgxAlbedoTableSize: n . v = max((i / 16)^2, 1e-4),
+// alpha = max((j / 16)^2, 1e-3).
+constexpr int kGgxAlbedoTableSize = 17;
+glm::dvec2 ggxSpecularAlbedoNode(int i, int j);
+
+// Approximation of integral G(w; light.axis, light.sharpness) f_spec(w, view) (w . n)^+ dw for a
+// UNIT-amplitude SG (light.logAmplitude is ignored: the caller multiplies by exp(logAmplitude)
+// and the light's scale), f_spec exactly the specular BRDF of brdf.glsl: GGX NDF with alpha
+// (floored at kSgGgxMinAlpha), height-correlated Smith visibility, Schlick Fresnel with f0 (RGB).
+// normal and view are unit; view points from the surface to the viewer, and n . v is clamped to
+// kSgGgxMinViewCosine as in brdf.glsl. Factorised as K E with
+//   K = integral G p (the light's mass seen through the normalised reflection pdf p of the
+//       symmetric GGX VNDF, [T24] Section 5.2), a blend of [T24]'s NDF filtering (exact for sharp
+//       lights) and the inner product with a normalised reflection SG (exact for wide ones),
+//       scaled by sgGgxPeakCorrection;
+//   E = the mean of f_spec cos / p (shadowing-masking, cosine, Fresnel) over the product lobe
+//       (light x reflection SG): its clamped-cosine mean by [T24]'s D, the visibility ratio at
+//       the mean cosine of its part above the horizon, Fresnel at the half vector of that part's
+//       mean direction, pulled towards the tabulated albedo (ggxSpecularAlbedo) as the light
+//       widens, so that a constant light returns the albedo.
+// Exact for a constant light (up to the table, 1.4 %) and for lambda -> infinity; in between,
+// errors against quadrature (SgMathGlossy.MatchesQuadrature) up to 23 % for the mirror-direction
+// light and 38 % off it at n . v >= 0.3, up to 2.3x at grazing view (n . v = 0.05) for
+// lambda ~ 10..100: docs/techniques/sg-lighting.md. >= 0 and finite for sharpness in [0, 2^41]
+// and beyond, alpha in [0, 1], any view (n . v < 0 included) and light axis.
+glm::dvec3 sgGgxReflection(const Sg& light, glm::dvec3 normal, glm::dvec3 view, double alpha,
+                           glm::dvec3 f0);
+
 }  // namespace gi

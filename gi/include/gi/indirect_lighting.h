@@ -1,0 +1,170 @@
+// The public API of the module: one-bounce diffuse and glossy indirect light from virtual
+// spherical Gaussian lights for a deferred renderer. docs/integration.md walks through it with
+// a complete example and the resource table.
+//
+// The host owns everything Vulkan: instance, device, queues, command buffers, its G-buffer and
+// its scene buffers. IndirectLighting records compute work into a command buffer the host gives
+// it and never submits, waits or presents. It allocates its own intermediate resources on the
+// host's device and hands back two images the host composites: indirect diffuse and indirect
+// glossy radiance. No exception crosses this API: failures come back as a Status with one line.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gi/settings.h"
+
+namespace gi {
+
+struct Status {
+  bool ok = true;
+  std::string message;  // one line naming the input or field and the problem when !ok
+  explicit operator bool() const { return ok; }
+};
+
+// The host's device. Requirements: Vulkan 1.3 with synchronization2 and maintenance4 enabled,
+// VK_KHR_push_descriptor, shaderInt64 and shaderBufferInt64Atomics (Vulkan 1.2 features); the
+// queue that runs our commands must support compute.
+struct DeviceHandles {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+};
+
+// A host image: the view covers its single mip level; `layout` is the layout it is in when the
+// recorded commands start (any layout that holds its contents; not UNDEFINED).
+struct ImageRef {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
+// The host's G-buffer, width x height, usage STORAGE (the module reads it with imageLoad).
+// Formats and encodings (shaders/shared/gbuffer.h):
+//   depth    R32_SFLOAT           Vulkan NDC depth in [0, 1] of `Camera::viewProj`; 1 = sky
+//   normal   R16G16_SNORM         world-space unit normal, octahedral encoding, facing the viewer
+//   diffuse  R16G16B16A16_SFLOAT  rgb = diffuse albedo (base colour x (1 - metallic)),
+//                                 a = perceptual roughness r (GGX alpha = r^2)
+//   specular R16G16B16A16_SFLOAT  rgb = F0 (mix(0.04, base colour, metallic)), a = metallic
+// The module leaves all four in VK_IMAGE_LAYOUT_GENERAL (also reported in FrameOutput).
+struct GBufferImages {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  ImageRef depth, normal, diffuse, specular;
+};
+
+// Scene geometry in host buffers, read by the module's light-view rasteriser (the RSM) and by
+// the ISM point generation. Layouts (std430, shaders/shared/scene_data.h):
+//   vertices           gpu::SceneVertex per vertex: vec4(world position, u), vec4(unit normal, v)
+//   indices            uint32 x 3 per triangle, counter-clockwise seen from the front
+//   triangleMaterials  uint32 material index per triangle
+//   materials          gpu::SceneMaterial per material (glTF metallic-roughness factors and
+//                      texture layers, -1 = none)
+//   baseColorTextures  2-D array view, R8G8B8A8_SRGB, layers indexed by the materials
+//   dataTextures       2-D array view, R8G8B8A8_UNORM (glTF metallic-roughness: g = roughness,
+//                      b = metallic); both in SHADER_READ_ONLY_OPTIMAL, sampled with `sampler`
+// Vertex positions may change every frame (animation): the ISM points are stored as (triangle,
+// barycentrics) and follow them. Call setScene again when the triangle set changes.
+struct SceneGeometry {
+  VkBuffer vertices = VK_NULL_HANDLE;
+  VkDeviceSize vertexBytes = 0;
+  VkBuffer indices = VK_NULL_HANDLE;
+  VkDeviceSize indexBytes = 0;
+  VkBuffer triangleMaterials = VK_NULL_HANDLE;
+  VkDeviceSize triangleMaterialBytes = 0;
+  VkBuffer materials = VK_NULL_HANDLE;
+  VkDeviceSize materialBytes = 0;
+  uint32_t triangleCount = 0;
+  VkImageView baseColorTextures = VK_NULL_HANDLE;
+  VkImageView dataTextures = VK_NULL_HANDLE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  glm::vec3 boundsMin{0.0f};  // world-space box around all geometry (RSM depth range, ISM far
+  glm::vec3 boundsMax{0.0f};  // distance, directional lights' orthographic view)
+};
+
+// The light that bounces: a spot or a directional light in KHR_lights_punctual units.
+struct Light {
+  enum class Type : uint32_t { Spot, Directional };
+  Type type = Type::Spot;
+  glm::vec3 position{0.0f};                // world, metres (spot)
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit, the way light travels
+  glm::vec3 color{1.0f};                   // linear RGB
+  float intensity = 1.0f;                  // spot: W/sr (candela / 683); directional: W/m^2
+  float innerConeAngle = 0.0f;             // radians, [0, outer)
+  float outerConeAngle = 0.785398f;        // radians, (0, 1.3]
+};
+
+// The camera that produced the G-buffer: Vulkan clip space (NDC y down, depth [0, 1]),
+// column-major GLM matrices, clip = proj * view * world.
+struct Camera {
+  glm::mat4 view{1.0f};
+  glm::mat4 proj{1.0f};
+};
+
+struct FrameInput {
+  GBufferImages gbuffer;
+  Camera camera;
+  Light light;
+};
+
+struct FrameOutput {
+  // RGBA32F radiance toward the camera (W sr^-1 m^-2, linear, alpha 1), width x height, in
+  // VK_IMAGE_LAYOUT_GENERAL, written by compute; the barrier after the module's last pass makes
+  // them visible to any later stage. Sky pixels are 0. Owned by the module.
+  ImageRef indirectDiffuse;
+  ImageRef indirectGlossy;
+  // R32_SFLOAT visibility of VSGL Settings::debugVsgl from each pixel (VK_NULL_HANDLE when
+  // debugVsgl < 0).
+  ImageRef debugVisibility;
+  // The VSGL records of this frame (gpu::Vsgl, shaders/shared/vsgl.h), for debug views.
+  VkBuffer vsgls = VK_NULL_HANDLE;
+  uint32_t vsglCount = 0;
+  // Layout the module left the host's G-buffer images in.
+  VkImageLayout gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
+struct PassTime {
+  std::string name;
+  double ms = 0.0;
+};
+
+class IndirectLighting {
+ public:
+  // Validates the settings and creates every pipeline and resource for a width x height
+  // G-buffer (a resolution change means a new instance). Null on failure, with `status` set.
+  static std::unique_ptr<IndirectLighting> create(const DeviceHandles& device,
+                                                  const Settings& settings, uint32_t width,
+                                                  uint32_t height, Status* status);
+  ~IndirectLighting();
+  IndirectLighting(const IndirectLighting&) = delete;
+  IndirectLighting& operator=(const IndirectLighting&) = delete;
+
+  // The geometry the RSM and ISMs are built from; required before the first record().
+  Status setScene(const SceneGeometry& scene);
+
+  // Changes the per-frame settings; a "creation" field that differs is refused (recreate).
+  Status setSettings(const Settings& settings);
+  const Settings& settings() const;
+
+  // Records one frame into `cmd` (a primary command buffer in the recording state, on a queue
+  // of DeviceHandles::queueFamily). The host submits it; every recorded command buffer must be
+  // submitted, in recording order, because the module tracks its own image layouts.
+  Status record(VkCommandBuffer cmd, const FrameInput& input, FrameOutput* output);
+
+  // GPU time of each pass of the last recorded frame (a "frame" entry holds the total). Valid
+  // once that frame's submission has completed and before the next record(); empty if its
+  // timestamps are not available yet. Never waits.
+  std::vector<PassTime> lastFrameTimes() const;
+
+ private:
+  struct Impl;
+  explicit IndirectLighting(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gi

@@ -1,0 +1,104 @@
+// Every setting of the indirect-lighting module in one struct (docs/integration.md). Each field
+// states its default, range, unit and what it costs; validateSettings() names the first field
+// that is out of range. Fields marked "creation" size resources: changing them means creating a
+// new IndirectLighting; the others may change every frame (IndirectLighting::setSettings).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace gi {
+
+// How each VSGL's filter kernel is sized (vsgl-math.md section 5).
+enum class KernelRule : uint32_t {
+  Tok15 = 0,     // Tokuyoshi 2015: mip level from the PDF at the kernel centre
+  Modified = 1,  // modified FIS: the kernel holds K/N of the PDF mass (bisection, [S3] Eq. 3)
+};
+
+// Which PDF the VSGLs sample over the RSM (vsgl-math.md section 7).
+enum class PdfKind : uint32_t {
+  Flux = 0,  // proportional to reflected flux: view-independent, cheapest
+  Brsm = 1,  // view-dependent bidirectional RSM: importance VSGLs from the camera G-buffer
+};
+
+struct BrsmSettings {
+  // Creation. Importance VSGLs generated from the camera G-buffer, [1, 65536] ([S3]: 2048).
+  // Cost: stage B is linear in it (cells x count x 4 SG inner products).
+  uint32_t importanceCount = 2048;
+  // Creation. Cells per side of the stage-B grid, a power of two in [1, rsmSize]; rsmSize makes
+  // it per texel. Within a cell the PDF follows the texels' flux. Cost ~ gridSize^2 x
+  // importanceCount (about 38 ns per cell and importance VSGL on lavapipe, 2 cores: 32^2 x 2048
+  // = 80 ms, 64^2 x 2048 = 0.3 s).
+  uint32_t gridSize = 32;
+  // Share e in (0, 1] of the flux-proportional PDF mixed in: every lit texel keeps p > 0, so no
+  // light is lost where the importance estimate is zero; 1 = the flux PDF. No cost.
+  float fluxMix = 0.1f;
+};
+
+// Percentage-closer filtering of the ISM depth test (shaders/shared/ism.h ISM_PCF_*).
+enum IsmFilter : uint32_t { IsmNearest = 0, IsmBilinear = 1, IsmBox3 = 2 };
+
+struct IsmSettings {
+  // Texels per side of one VSGL's paraboloid map, a power of two in [16, 256] ([S3]: 64). Cost:
+  // atlas maxVsglCount x mapSize^2 x 4 bytes plus a third of that as pull-push scratch (21 MB
+  // at 1024 x 64^2); pull-push time ~ VSGLs x mapSize^2; a bigger map needs proportionally more
+  // points per VSGL for the same coverage (holes are filled, but blur the shadows).
+  uint32_t mapSize = 64;
+  // Pool of surface points P, a power of two in [2^10, 2^22]. Cost: 8 bytes (point) + 16 bytes
+  // (position) each; generation time ~ P log2(triangles), once per scene change. P /
+  // pointsPerVsgl VSGLs get disjoint subsets; beyond that subsets repeat.
+  uint32_t pointCount = 1u << 18;
+  // Points splatted per VSGL M, a power of two in [64, pointCount]. Cost: splat time ~ VSGLs x M
+  // (1024 x 4096 = 4M 32-bit atomics per build). 4096 puts about one point on every texel a
+  // 64^2 hemisphere sees of a closed room: fewer leave more of the map to pull-push (softer,
+  // leakier shadows).
+  uint32_t pointsPerVsgl = 4096;
+  // Constant depth bias, metres, [0, 10]: subtracted from the receiver's distance. Hides the
+  // depth spread of one texel's points on a receiver facing the VSGL. No cost.
+  float depthBias = 0.03f;
+  // Slope-scaled bias in texel footprints, [0, 16]: (distance x texel angle) x tan(receiver
+  // angle) more bias, the depth change across one texel on a tilted receiver. Larger = less
+  // acne, more light leaking at contacts. No cost.
+  float slopeBias = 1.5f;
+  // Metres the ISM centre sits above the VSGL's mean along its axis, [0, 10]: keeps the VSGL's
+  // own (flat) surface below the hemisphere. Larger = contact shadows near the VSGL lost.
+  float centreOffset = 0.02f;
+  // IsmNearest (1 texel), IsmBilinear (2 x 2, default) or IsmBox3 (3 x 3). Cost: 1, 4 or 9
+  // atlas reads per pixel-VSGL pair.
+  uint32_t pcf = IsmBilinear;
+};
+
+struct Settings {
+  // Creation. RSM side in texels, a power of two in [16, 2048] ([S3]: 512). Cost ~ rsmSize^2 in
+  // the RSM, attribute and mip passes (about 0.3 us per texel on lavapipe).
+  uint32_t rsmSize = 256;
+  // Creation. Largest VSGL count this instance will be asked for, [1, 65535]; sizes the VSGL
+  // buffer and the ISM atlas. 0 = vsglCount.
+  uint32_t maxVsglCount = 0;
+  // VSGLs per frame N, [1, maxVsglCount] ([S3]: 1024). Cost ~ N x pixels in shading (the
+  // dominant pass) and ~ N in the ISM build.
+  uint32_t vsglCount = 1024;
+  // K, [1, vsglCount]: each kernel holds K/N of the PDF mass. Larger = blurrier and temporally
+  // steadier ([S3]: 1). No cost.
+  float kernelScale = 1.0f;
+  KernelRule rule = KernelRule::Modified;
+  PdfKind pdf = PdfKind::Brsm;
+  BrsmSettings brsm;
+  // Indirect visibility with imperfect shadow maps (vsgl-math.md section 8). Off: every VSGL
+  // lights every receiver it faces (light leaks through walls); saves the ISM build and the
+  // per pair depth test.
+  bool ismEnabled = true;
+  // Creation. The imperfect shadow maps' resolution, point set and biases (docs/techniques/ism.md).
+  IsmSettings ism;
+  // Shade the glossy (GGX) term. Off halves the shading cost; the glossy output is then 0.
+  bool glossy = true;
+  // Debug: index of the VSGL whose ISM visibility is written to FrameOutput::debugVisibility,
+  // or -1 for none. Cost: one extra pass over the pixels.
+  int32_t debugVsgl = -1;
+};
+
+// Empty when every field is in range, else one line naming the first bad field, e.g.
+// "Settings.rsmSize: 300 is not a power of two in [16, 2048]".
+std::string validateSettings(const Settings& settings);
+
+}  // namespace gi

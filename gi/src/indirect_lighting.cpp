@@ -1,0 +1,320 @@
+// The public API's implementation: the frame graph of the module, recorded into the host's
+// command buffer (docs/architecture.md "data flow"):
+//   [BRSM stage A: importance VSGLs from the host G-buffer] -> RSM (light-view raster, flux) ->
+//   attribute pyramids -> [BRSM stage B: view-dependent PDF] -> VSGL generation -> [ISM build]
+//   -> shading -> [debug visibility].
+#include "gi/indirect_lighting.h"
+
+#include <optional>
+
+#include "engine/commands.h"
+#include "engine/rasterizer.h"
+#include "passes/brsm_pdf.h"
+#include "passes/ism.h"
+#include "passes/vsgl_shade.h"
+#include "shared/vsgl_shade.h"
+
+namespace gi {
+namespace {
+
+// Settings that size resources; setSettings refuses to change them.
+bool sameCreationFields(const Settings& a, const Settings& b) {
+  return a.rsmSize == b.rsmSize && a.maxVsglCount == b.maxVsglCount &&
+         a.brsm.importanceCount == b.brsm.importanceCount && a.brsm.gridSize == b.brsm.gridSize &&
+         a.ism.mapSize == b.ism.mapSize && a.ism.pointCount == b.ism.pointCount &&
+         a.ism.pointsPerVsgl == b.ism.pointsPerVsgl && a.ism.depthBias == b.ism.depthBias &&
+         a.ism.slopeBias == b.ism.slopeBias && a.ism.centreOffset == b.ism.centreOffset &&
+         a.ism.pcf == b.ism.pcf;
+}
+
+engine::Light engineLight(const Light& light) {
+  engine::Light l;
+  l.name = "FrameInput.light";
+  l.type =
+      light.type == Light::Type::Spot ? engine::LightType::Spot : engine::LightType::Directional;
+  l.position = light.position;
+  l.direction = glm::normalize(light.direction);
+  l.color = light.color;
+  l.intensity = light.intensity;
+  l.innerConeAngle = light.innerConeAngle;
+  l.outerConeAngle = light.outerConeAngle;
+  return l;
+}
+
+engine::Image borrowImage(const ImageRef& ref, uint32_t width, uint32_t height, VkFormat format) {
+  engine::ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = format;
+  return engine::Image::borrow(ref.image, ref.view, desc, ref.layout);
+}
+
+// The host's G-buffer images move from the layouts it handed in to GENERAL, after whatever
+// stage wrote them (the host may have rasterised them with graphics pipelines).
+void acquireHostImages(VkCommandBuffer cmd, engine::GBuffer& g) {
+  std::vector<VkImageMemoryBarrier2> barriers;
+  for (engine::Image* image : {&g.depth, &g.normal, &g.diffuse, &g.specular}) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    b.oldLayout = image->layout();
+    b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image->handle();
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    barriers.push_back(b);
+    image->setLayout(VK_IMAGE_LAYOUT_GENERAL);
+  }
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.imageMemoryBarrierCount = static_cast<uint32_t>(barriers.size());
+  dep.pImageMemoryBarriers = barriers.data();
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+// Our outputs, written by compute, become visible to whatever the host does next.
+void releaseOutputs(VkCommandBuffer cmd) {
+  VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  b.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  b.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+Status failure(const std::string& message) {
+  return {false, message};
+}
+
+}  // namespace
+
+struct IndirectLighting::Impl {
+  Impl(const DeviceHandles& device, const Settings& s, uint32_t w, uint32_t h)
+      : ctx({device.instance, device.physicalDevice, device.device, device.queueFamily}),
+        settings(s),
+        maxCount(s.maxVsglCount ? s.maxVsglCount : s.vsglCount),
+        width(w),
+        height(h),
+        rasterizer(ctx),
+        resolve(ctx),
+        mips(ctx),
+        rsm(ctx, s.rsmSize),
+        attributes(ctx, s.rsmSize),
+        generator(ctx, maxCount),
+        ism(ctx, s.ism, maxCount),
+        shade(ctx),
+        indirect(createIndirectImages(ctx, w, h)),
+        profiler(ctx) {
+    if (s.pdf == PdfKind::Brsm) createBrsm();
+  }
+
+  void createBrsm() {
+    importance.emplace(ctx, width, height, settings.brsm.importanceCount);
+    brsmPdf.emplace(ctx, settings.rsmSize, settings.brsm.gridSize);
+  }
+
+  void record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out);
+
+  engine::Context ctx;
+  Settings settings;
+  uint32_t maxCount;
+  uint32_t width, height;
+  std::optional<engine::SceneGpu> scene;
+  engine::Bounds bounds;
+  engine::Rasterizer rasterizer;
+  engine::GBufferResolve resolve;
+  MipPyramid mips;
+  ReflectiveShadowMap rsm;
+  VsglAttributes attributes;
+  VsglGenerator generator;
+  std::optional<ImportanceVsgls> importance;  // BRSM stage A, created with the first Brsm frame
+  std::optional<BrsmPdf> brsmPdf;             // BRSM stage B
+  Ism ism;                                    // always built: ismEnabled may change per frame
+  bool ismPointsStale = true;  // the scene changed since the point pool was generated
+  VsglShade shade;
+  IndirectImages indirect;
+  std::optional<engine::Image> debugVisibility;  // created with the first debug frame
+  engine::GpuProfiler profiler;
+};
+
+void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out) {
+  const GBufferImages& g = in.gbuffer;
+  if (g.width != width || g.height != height)
+    throw engine::Error("FrameInput.gbuffer: " + std::to_string(g.width) + "x" +
+                        std::to_string(g.height) + " differs from the " + std::to_string(width) +
+                        "x" + std::to_string(height) + " this instance was created for (recreate)");
+  for (const ImageRef* ref : {&g.depth, &g.normal, &g.diffuse, &g.specular})
+    if (!ref->image || !ref->view || ref->layout == VK_IMAGE_LAYOUT_UNDEFINED)
+      throw engine::Error(
+          "FrameInput.gbuffer: every image needs its VkImage, VkImageView and current layout "
+          "(not UNDEFINED)");
+  if (!scene) throw engine::Error("IndirectLighting::record: setScene was not called");
+  if (settings.pdf == PdfKind::Brsm && !importance) createBrsm();
+
+  engine::GBuffer gbuffer;
+  gbuffer.width = width;
+  gbuffer.height = height;
+  gbuffer.depth = borrowImage(g.depth, width, height, VK_FORMAT_R32_SFLOAT);
+  gbuffer.normal = borrowImage(g.normal, width, height, VK_FORMAT_R16G16_SNORM);
+  gbuffer.diffuse = borrowImage(g.diffuse, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
+  gbuffer.specular = borrowImage(g.specular, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
+
+  const engine::Light light = engineLight(in.light);
+  const RsmView rsmView = makeRsmView(bounds, light, settings.rsmSize);
+  const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
+  const uint32_t rule = static_cast<uint32_t>(settings.rule);
+
+  ctx.recordDeferredSetup(cmd);
+  profiler.beginFrame(cmd);
+  {
+    engine::ProfileScope frame(&profiler, cmd, "frame");
+    acquireHostImages(cmd, gbuffer);
+    const bool brsm = settings.pdf == PdfKind::Brsm;
+    // [S3] generates the importance VSGLs with the rule under test and K = 1.
+    if (brsm)
+      importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
+                         &profiler);
+    rsm.record(cmd, *scene, rasterizer, resolve, rsmView, light, &profiler);
+    attributes.record(cmd, rsm.vpls(), rsm.surface(), rsmView, mips, &profiler);
+    if (brsm)
+      brsmPdf->record(cmd, attributes, rsmView, importance->vsgls(), settings.brsm, mips,
+                      &profiler);
+    generator.record(cmd, attributes, rsmView, {settings.vsglCount, settings.kernelScale, rule},
+                     &profiler);
+    VsglShade::Inputs shading{&generator.vsgls(), settings.vsglCount,
+                              settings.glossy ? VSGL_SHADE_GLOSSY : 0u, &ism.atlas(), ism.params()};
+    if (settings.ismEnabled) {
+      if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
+      ismPointsStale = false;
+      ism.recordBuild(cmd, *scene, generator.vsgls(), settings.vsglCount, &profiler);
+      engine::computeBarrier(cmd);
+      shading.flags |= VSGL_SHADE_VISIBILITY;
+    }
+    shade.record(cmd, gbuffer, camera.invViewProj, shading, indirect, &profiler);
+    if (settings.debugVsgl >= 0) {
+      if (!debugVisibility) {
+        engine::ImageDesc desc;
+        desc.width = width;
+        desc.height = height;
+        desc.format = VK_FORMAT_R32_SFLOAT;
+        debugVisibility.emplace(ctx, desc);
+        // A fresh image's first barrier comes from UNDEFINED inside this command buffer.
+        engine::imageBarrier(cmd, *debugVisibility, VK_IMAGE_LAYOUT_GENERAL);
+      }
+      if (!settings.ismEnabled && ismPointsStale) {
+        ism.recordPoints(cmd, *scene, &profiler);
+        ismPointsStale = false;
+      }
+      if (!settings.ismEnabled)
+        ism.recordBuild(cmd, *scene, generator.vsgls(), settings.vsglCount, &profiler);
+      engine::computeBarrier(cmd);
+      ism.recordVisibility(cmd, gbuffer, camera, generator.vsgls(),
+                           static_cast<uint32_t>(settings.debugVsgl), *debugVisibility, &profiler);
+    }
+    releaseOutputs(cmd);
+  }
+
+  out = {};
+  out.indirectDiffuse = {indirect.diffuse.handle(), indirect.diffuse.view(),
+                         indirect.diffuse.layout()};
+  out.indirectGlossy = {indirect.glossy.handle(), indirect.glossy.view(), indirect.glossy.layout()};
+  if (settings.debugVsgl >= 0)
+    out.debugVisibility = {debugVisibility->handle(), debugVisibility->view(),
+                           debugVisibility->layout()};
+  out.vsgls = generator.vsgls().handle();
+  out.vsglCount = settings.vsglCount;
+  out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
+}
+
+IndirectLighting::IndirectLighting(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+IndirectLighting::~IndirectLighting() = default;
+
+std::unique_ptr<IndirectLighting> IndirectLighting::create(const DeviceHandles& device,
+                                                           const Settings& settings, uint32_t width,
+                                                           uint32_t height, Status* status) {
+  Status result;
+  std::unique_ptr<IndirectLighting> lighting;
+  if (std::string bad = validateSettings(settings); !bad.empty()) {
+    result = failure(bad);
+  } else if (width < 1 || height < 1 || width > 16384 || height > 16384) {
+    result = failure("IndirectLighting::create: G-buffer size " + std::to_string(width) + "x" +
+                     std::to_string(height) + " is outside [1, 16384]");
+  } else {
+    try {
+      lighting.reset(new IndirectLighting(std::make_unique<Impl>(device, settings, width, height)));
+    } catch (const std::exception& e) {
+      result = failure(e.what());
+    }
+  }
+  if (status) *status = result;
+  return lighting;
+}
+
+Status IndirectLighting::setScene(const SceneGeometry& s) {
+  if (!s.vertices || !s.indices || !s.triangleMaterials || !s.materials || !s.baseColorTextures ||
+      !s.dataTextures || !s.sampler)
+    return failure("SceneGeometry: every buffer, texture view and the sampler must be set");
+  if (s.triangleCount == 0) return failure("SceneGeometry.triangleCount: 0 (nothing to light)");
+  if (s.indexBytes < VkDeviceSize{s.triangleCount} * 12 ||
+      s.triangleMaterialBytes < VkDeviceSize{s.triangleCount} * 4)
+    return failure("SceneGeometry: indexBytes or triangleMaterialBytes is smaller than " +
+                   std::to_string(s.triangleCount) + " triangles need");
+  if (!glm::all(glm::lessThanEqual(s.boundsMin, s.boundsMax)))
+    return failure("SceneGeometry.boundsMin: not below boundsMax on every axis");
+  engine::SceneGpu scene;
+  scene.vertices = engine::Buffer::borrow(s.vertices, s.vertexBytes);
+  scene.indices = engine::Buffer::borrow(s.indices, s.indexBytes);
+  scene.triangleMaterials = engine::Buffer::borrow(s.triangleMaterials, s.triangleMaterialBytes);
+  scene.materials = engine::Buffer::borrow(s.materials, s.materialBytes);
+  engine::ImageDesc array;
+  array.arrayView = true;
+  scene.baseColorTextures = engine::Image::borrow(VK_NULL_HANDLE, s.baseColorTextures, array,
+                                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  scene.dataTextures = engine::Image::borrow(VK_NULL_HANDLE, s.dataTextures, array,
+                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  scene.sampler = engine::Sampler::borrow(s.sampler);
+  scene.triangleCount = s.triangleCount;
+  impl_->scene = std::move(scene);
+  impl_->ismPointsStale = true;
+  impl_->bounds = {s.boundsMin, s.boundsMax};
+  return {};
+}
+
+Status IndirectLighting::setSettings(const Settings& settings) {
+  if (std::string bad = validateSettings(settings); !bad.empty()) return failure(bad);
+  if (!sameCreationFields(settings, impl_->settings))
+    return failure(
+        "Settings: a creation field (rsmSize, maxVsglCount, brsm.importanceCount, "
+        "brsm.gridSize, ism*) changed; create a new IndirectLighting instead");
+  if (settings.vsglCount > impl_->maxCount)
+    return failure("Settings.vsglCount: " + std::to_string(settings.vsglCount) +
+                   " exceeds maxVsglCount " + std::to_string(impl_->maxCount));
+  impl_->settings = settings;
+  return {};
+}
+
+const Settings& IndirectLighting::settings() const {
+  return impl_->settings;
+}
+
+Status IndirectLighting::record(VkCommandBuffer cmd, const FrameInput& input, FrameOutput* output) {
+  if (!cmd || !output) return failure("IndirectLighting::record: null command buffer or output");
+  try {
+    impl_->record(cmd, input, *output);
+  } catch (const std::exception& e) {
+    return failure(e.what());
+  }
+  return {};
+}
+
+std::vector<PassTime> IndirectLighting::lastFrameTimes() const {
+  std::vector<PassTime> out;
+  for (const engine::PassTime& p : impl_->profiler.results(false)) out.push_back({p.name, p.ms});
+  return out;
+}
+
+}  // namespace gi

@@ -1,0 +1,64 @@
+#include "passes/vsgl_shade.h"
+
+#include "engine/commands.h"
+#include "reference/sg_math.h"
+#include "shared/vsgl.h"
+#include "shared/vsgl_shade.h"
+#include "spirv/vsgl_shade.h"
+
+namespace gi {
+
+IndirectImages createIndirectImages(engine::Context& ctx, uint32_t width, uint32_t height) {
+  engine::ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  IndirectImages images{engine::Image(ctx, desc), engine::Image(ctx, desc)};
+  engine::initialLayout(ctx, images.diffuse, VK_IMAGE_LAYOUT_GENERAL);
+  engine::initialLayout(ctx, images.glossy, VK_IMAGE_LAYOUT_GENERAL);
+  return images;
+}
+
+VsglShade::VsglShade(engine::Context& ctx)
+    : program_(ctx, "vsgl_shade", kVsglShadeSpv,
+               {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+               sizeof(gpu::VsglShadePush)),
+      albedoTable_(ctx, sizeof(glm::vec2) * kGgxAlbedoTableSize * kGgxAlbedoTableSize,
+                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload) {
+  // Host-visible memory: written here without a submit (the module never submits).
+  std::vector<glm::vec2> table;
+  for (int i = 0; i < kGgxAlbedoTableSize; ++i)
+    for (int j = 0; j < kGgxAlbedoTableSize; ++j) table.emplace_back(ggxSpecularAlbedoNode(i, j));
+  albedoTable_.upload(ctx, std::span<const glm::vec2>(table));
+}
+
+void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const glm::mat4& invViewProj,
+                       const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler) const {
+  if (in.vsgls->size() < VkDeviceSize{in.vsglCount} * sizeof(gpu::Vsgl))
+    throw engine::Error("VSGL shading: " + std::to_string(in.vsglCount) +
+                        " VSGLs exceed the VSGL buffer");
+  engine::ProfileScope scope(profiler, cmd, "vsgl shading");
+  using engine::Binding;
+  gpu::VsglShadePush push{};
+  push.invViewProj = invViewProj;
+  push.viewport = {gbuffer.width, gbuffer.height};
+  push.vsglCount = in.vsglCount;
+  push.flags = in.flags;
+  push.ism = in.ism;
+  program_.dispatch(cmd,
+                    {Binding::storageImage(gbuffer.depth), Binding::storageImage(gbuffer.normal),
+                     Binding::storageImage(gbuffer.diffuse),
+                     Binding::storageImage(gbuffer.specular), Binding::storage(*in.vsgls),
+                     Binding::storageImage(out.diffuse), Binding::storageImage(out.glossy),
+                     Binding::storageImage(*in.ismAtlas, 0), Binding::storage(albedoTable_)},
+                    push, engine::groupCount(gbuffer.width, VSGL_SHADE_GROUP_X),
+                    engine::groupCount(gbuffer.height, VSGL_SHADE_GROUP_Y));
+  engine::computeBarrier(cmd);
+}
+
+}  // namespace gi

@@ -1,0 +1,41 @@
+// VSGL shading: indirect diffuse and glossy radiance of every G-buffer pixel from the frame's
+// VSGLs (shaders/gi/vsgl_shade.comp, layout in shaders/shared/vsgl_shade.h).
+#pragma once
+
+#include "engine/gbuffer.h"
+#include "engine/profiler.h"
+#include "engine/program.h"
+#include "shared/ism.h"
+
+namespace gi {
+
+// The two RGBA32F outputs, created in GENERAL layout.
+struct IndirectImages {
+  engine::Image diffuse;
+  engine::Image glossy;
+};
+IndirectImages createIndirectImages(engine::Context& ctx, uint32_t width, uint32_t height);
+
+class VsglShade {
+ public:
+  explicit VsglShade(engine::Context& ctx);
+
+  // The VSGL shading pass's inputs besides the G-buffer.
+  struct Inputs {
+    const engine::Buffer* vsgls = nullptr;  // gpu::Vsgl[vsglCount]
+    uint32_t vsglCount = 0;
+    uint32_t flags = 0;                       // VSGL_SHADE_*
+    const engine::Image* ismAtlas = nullptr;  // Ism::atlas(), bound even when not read
+    gpu::IsmParams ism{};                     // Ism::params()
+  };
+
+  // `invViewProj`: the G-buffer camera's NDC -> world matrix.
+  void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const glm::mat4& invViewProj,
+              const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler = nullptr) const;
+
+ private:
+  engine::ComputeProgram program_;
+  engine::Buffer albedoTable_;  // vec2[17 x 17], gi::ggxSpecularAlbedoNode (sg_lighting.glsl)
+};
+
+}  // namespace gi

@@ -1,0 +1,31 @@
+#include "reference/vsgl_shade_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gi {
+
+IndirectRadiance shadeReference(const ShadeReceiver& receiver, std::span<const gpu::Vsgl> vsgls,
+                                bool glossy, const VsglVisibility& visibility) {
+  const double alpha = std::max(receiver.roughness * receiver.roughness, 1e-3);
+  glm::dvec3 diffuseSum(0.0);  // sum of E e^(l_p) D, times albedo at the end
+  IndirectRadiance out;
+  for (uint32_t k = 0; k < vsgls.size(); ++k) {
+    const double v = visibility ? visibility(k) : 1.0;
+    if (v == 0.0) continue;
+    for (const gpu::VsglLobe* lobe : {&vsgls[k].diffuse, &vsgls[k].specular}) {
+      if (std::max({lobe->power.r, lobe->power.g, lobe->power.b}) <= 0.0f) continue;
+      const VsglIncomingRadiance radiance = vsglIncomingRadiance(*lobe, receiver.position);
+      const glm::dvec3 e = v * radiance.scale * std::exp(radiance.sg.logAmplitude);
+      diffuseSum += e * sgClampedCosineIntegralOverPi(radiance.sg.sharpness,
+                                                      glm::dot(radiance.sg.axis, receiver.normal));
+      if (glossy)
+        out.glossy +=
+            e * sgGgxReflection(radiance.sg, receiver.normal, receiver.view, alpha, receiver.f0);
+    }
+  }
+  out.diffuse = diffuseSum * receiver.albedo;
+  return out;
+}
+
+}  // namespace gi

@@ -1,0 +1,26 @@
+// The sample renderer's debug pictures, drawn on the CPU from what the public API hands back.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/image_io.h"
+#include "shared/vsgl.h"
+
+namespace render {
+
+// The VSGL lobes over a dimmed copy of `rgba8` (the tone-mapped frame): each lobe's mean as a
+// circle of radius 2 sigma (sigma = sqrt(variance), projected; at least 2 pixels), cyan for
+// diffuse lobes and orange for glossy ones, brighter for more power (log scale over three
+// decades), and a tick from the mean along the lobe axis.
+std::vector<uint8_t> drawVsglLobes(std::span<const uint8_t> rgba8, int width, int height,
+                                   std::span<const gpu::Vsgl> vsgls, const glm::mat4& viewProj);
+
+// A visibility image (R32F in [0, 1]) as grey RGBA8, sky and unlit pixels black.
+std::vector<uint8_t> greyscale(std::span<const float> values);
+
+// Index of the VSGL with the largest total power (luminance weight of both lobes).
+uint32_t brightestVsgl(std::span<const gpu::Vsgl> vsgls);
+
+}  // namespace render

@@ -1,0 +1,153 @@
+#include "gi_host.h"
+
+#include <cstdio>
+#include <cstring>
+
+#include "engine/profiler.h"
+
+namespace render {
+
+void check(const gi::Status& status) {
+  if (!status) throw engine::Error(status.message);
+}
+
+const engine::Light* bouncingLight(const engine::Scene& scene) {
+  for (const engine::Light& light : scene.lights)
+    if (light.type == engine::LightType::Spot || light.type == engine::LightType::Directional)
+      return &light;
+  return nullptr;
+}
+
+std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx, const Options& o,
+                                                     const engine::SceneGpu& gpuScene,
+                                                     const engine::Scene& scene) {
+  gi::Status status;
+  auto lighting = gi::IndirectLighting::create(
+      {ctx.instance(), ctx.physicalDevice(), ctx.device(), ctx.queueFamily()}, o.gi, o.width,
+      o.height, &status);
+  check(status);
+  gi::SceneGeometry geometry;
+  geometry.vertices = gpuScene.vertices.handle();
+  geometry.vertexBytes = gpuScene.vertices.size();
+  geometry.indices = gpuScene.indices.handle();
+  geometry.indexBytes = gpuScene.indices.size();
+  geometry.triangleMaterials = gpuScene.triangleMaterials.handle();
+  geometry.triangleMaterialBytes = gpuScene.triangleMaterials.size();
+  geometry.materials = gpuScene.materials.handle();
+  geometry.materialBytes = gpuScene.materials.size();
+  geometry.triangleCount = gpuScene.triangleCount;
+  geometry.baseColorTextures = gpuScene.baseColorTextures.view();
+  geometry.dataTextures = gpuScene.dataTextures.view();
+  geometry.sampler = gpuScene.sampler.handle();
+  const engine::Bounds bounds = scene.bounds();
+  geometry.boundsMin = bounds.min;
+  geometry.boundsMax = bounds.max;
+  check(lighting->setScene(geometry));
+  return lighting;
+}
+
+gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& view,
+                          const engine::Light& light) {
+  gi::FrameInput in;
+  auto ref = [](const engine::Image& image) {
+    return gi::ImageRef{image.handle(), image.view(), image.layout()};
+  };
+  in.gbuffer = {gbuffer.width,       gbuffer.height,       ref(gbuffer.depth),
+                ref(gbuffer.normal), ref(gbuffer.diffuse), ref(gbuffer.specular)};
+  in.camera = {view.view, view.proj};
+  in.light.type =
+      light.type == engine::LightType::Spot ? gi::Light::Type::Spot : gi::Light::Type::Directional;
+  in.light.position = light.position;
+  in.light.direction = light.direction;
+  in.light.color = light.color;
+  in.light.intensity = light.intensity;
+  in.light.innerConeAngle = light.innerConeAngle;
+  in.light.outerConeAngle = light.outerConeAngle;
+  return in;
+}
+
+namespace {
+
+engine::ImageRgba32f toImage(const std::vector<glm::vec4>& texels, uint32_t width,
+                             uint32_t height) {
+  engine::ImageRgba32f image;
+  image.width = static_cast<int>(width);
+  image.height = static_cast<int>(height);
+  image.pixels.assign(&texels.data()->x, &texels.data()->x + 4 * texels.size());
+  return image;
+}
+
+// The module's output images, read through a non-owning engine image of the host's own.
+engine::ImageRgba32f readOutput(engine::Context& ctx, const gi::ImageRef& ref, uint32_t width,
+                                uint32_t height, VkFormat format) {
+  engine::ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = format;
+  engine::Image image = engine::Image::borrow(ref.image, ref.view, desc, ref.layout);
+  return toImage(image.readbackRgba32f(ctx), width, height);
+}
+
+}  // namespace
+
+engine::ImageRgba32f readRadiance(engine::Context& ctx, engine::Image& image) {
+  return toImage(image.readbackRgba32f(ctx), image.desc().width, image.desc().height);
+}
+
+Indirect readIndirect(engine::Context& ctx, const gi::FrameOutput& output, uint32_t width,
+                      uint32_t height) {
+  return {readOutput(ctx, output.indirectDiffuse, width, height, VK_FORMAT_R32G32B32A32_SFLOAT),
+          readOutput(ctx, output.indirectGlossy, width, height, VK_FORMAT_R32G32B32A32_SFLOAT)};
+}
+
+std::vector<gpu::Vsgl> readVsgls(engine::Context& ctx, const gi::FrameOutput& output) {
+  engine::Buffer buffer =
+      engine::Buffer::borrow(output.vsgls, VkDeviceSize{output.vsglCount} * sizeof(gpu::Vsgl));
+  return buffer.readbackAs<gpu::Vsgl>(ctx);
+}
+
+std::vector<float> readVisibility(engine::Context& ctx, const gi::FrameOutput& output,
+                                  uint32_t width, uint32_t height) {
+  if (!output.debugVisibility.image)
+    throw engine::Error("internal: the module wrote no debug visibility image");
+  engine::ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = VK_FORMAT_R32_SFLOAT;
+  engine::Image image =
+      engine::Image::borrow(output.debugVisibility.image, output.debugVisibility.view, desc,
+                            output.debugVisibility.layout);
+  std::vector<std::byte> bytes = image.readback(ctx);
+  std::vector<float> values(bytes.size() / sizeof(float));
+  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+  return values;
+}
+
+void addInto(engine::ImageRgba32f& sum, const engine::ImageRgba32f& term) {
+  for (size_t i = 0; i < sum.pixels.size(); ++i)
+    if (i % 4 != 3) sum.pixels[i] += term.pixels[i];
+}
+
+void writePair(const std::string& base, const engine::ImageRgba32f& image,
+               const engine::ToneMapSettings& toneMap) {
+  engine::writeExr(base + ".exr", image);
+  engine::writePng(base + ".png", image.width, image.height, engine::toneMap(image, toneMap));
+}
+
+void PassTable::add(const std::string& name, double ms) {
+  if (!times_.count(name)) order_.push_back(name);
+  times_[name].push_back(ms);
+}
+
+void PassTable::print(uint32_t frames, uint32_t vsglCount, uint32_t pixels) const {
+  std::printf("GPU time per pass, median of %u frames (ms):\n", frames);
+  for (const auto& name : order_) {
+    const double ms = engine::median(times_.at(name));
+    std::printf("  %-34s %9.3f", name.c_str(), ms);
+    if (name == "gi vsgl shading" && vsglCount > 0)
+      std::printf("   (%.2f ns per pixel-VSGL pair)", ms * 1e6 / (double(vsglCount) * pixels));
+    std::printf("\n");
+  }
+}
+
+}  // namespace render

@@ -1,0 +1,32 @@
+// VSGL shading (vsgl-math.md section 4.5): for each G-buffer pixel, the sum over VSGLs and their
+// two lobes of the analytic SG lighting, split into indirect diffuse and indirect glossy images
+// (RGBA32F, linear radiance), times the ISM visibility when enabled.
+#ifndef SHADERS_SHARED_VSGL_SHADE_H
+#define SHADERS_SHARED_VSGL_SHADE_H
+#include "interop.h"
+#include "ism.h"
+
+#define VSGL_SHADE_GROUP_X 8
+#define VSGL_SHADE_GROUP_Y 8
+// Flags: which terms to shade.
+#define VSGL_SHADE_GLOSSY 1u      // the GGX term (off: the glossy image is 0)
+#define VSGL_SHADE_VISIBILITY 2u  // ISM visibility per pixel-VSGL pair (off: 1)
+// Incoming-radiance log amplitudes are clamped here before exp(): e^80 ~ 5.5e34 keeps a
+// receiver touching a zero-variance lobe finite (vsgl-math.md section 12, case 12) and, unlike
+// +inf, never turns into NaN when multiplied by a zero lighting integral.
+#define VSGL_SHADE_MAX_LOG_RADIANCE 80.0
+
+SHARED_BEGIN
+
+struct VsglShadePush {
+  mat4 invViewProj;  // camera NDC -> world
+  uvec2 viewport;
+  uint vsglCount;
+  uint flags;     // VSGL_SHADE_*
+  IsmParams ism;  // the atlas's layout and biases (read with VSGL_SHADE_VISIBILITY)
+};
+
+SHARED_END
+
+SHARED_ASSERT_SIZE(VsglShadePush, 112);
+#endif

@@ -1,0 +1,216 @@
+// The public API driven the way a host renderer drives it: the test owns the device, its own
+// G-buffer images (left in SHADER_READ_ONLY_OPTIMAL, as after a host's G-buffer pass), the
+// scene buffers and the command buffer; it hands plain Vulkan handles to gi::IndirectLighting
+// and checks the layouts and outputs it gets back, under the validation layer (the fixture fails
+// the test on any validation message). Only gi/include and the engine (the "host") are used.
+#include <cmath>
+
+#include "engine/builtin_scenes.h"
+#include "engine/commands.h"
+#include "engine/gbuffer.h"
+#include "engine/rasterizer.h"
+#include "gi/indirect_lighting.h"
+#include "gpu_fixture.h"
+
+namespace {
+
+constexpr uint32_t kWidth = 64, kHeight = 40;
+
+class IndirectLightingApiTest : public testing_gpu::GpuTest {
+ protected:
+  void SetUp() override {
+    testing_gpu::GpuTest::SetUp();
+    if (IsSkipped()) return;
+    scene_ = engine::makeBuiltinScene("cornell");
+    view_ = engine::cameraView(scene_.cameras.at(0), kWidth, kHeight);
+    gpuScene_ = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx(), scene_));
+    gbuffer_ = std::make_unique<engine::GBuffer>(renderGBuffer(*gpuScene_, view_));
+  }
+
+  // A host samples its G-buffer in its own passes: it hands it over in a read-only layout.
+  void toReadOnly() {
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      for (engine::Image* image :
+           {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+        engine::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    });
+  }
+
+  gi::DeviceHandles handles() {
+    return {ctx().instance(), ctx().physicalDevice(), ctx().device(), ctx().queueFamily()};
+  }
+
+  gi::SceneGeometry geometry() const {
+    gi::SceneGeometry g;
+    g.vertices = gpuScene_->vertices.handle();
+    g.vertexBytes = gpuScene_->vertices.size();
+    g.indices = gpuScene_->indices.handle();
+    g.indexBytes = gpuScene_->indices.size();
+    g.triangleMaterials = gpuScene_->triangleMaterials.handle();
+    g.triangleMaterialBytes = gpuScene_->triangleMaterials.size();
+    g.materials = gpuScene_->materials.handle();
+    g.materialBytes = gpuScene_->materials.size();
+    g.triangleCount = gpuScene_->triangleCount;
+    g.baseColorTextures = gpuScene_->baseColorTextures.view();
+    g.dataTextures = gpuScene_->dataTextures.view();
+    g.sampler = gpuScene_->sampler.handle();
+    const engine::Bounds b = scene_.bounds();
+    g.boundsMin = b.min;
+    g.boundsMax = b.max;
+    return g;
+  }
+
+  gi::FrameInput input() const {
+    gi::FrameInput in;
+    auto ref = [](const engine::Image& i) {
+      return gi::ImageRef{i.handle(), i.view(), i.layout()};
+    };
+    in.gbuffer = {kWidth,
+                  kHeight,
+                  ref(gbuffer_->depth),
+                  ref(gbuffer_->normal),
+                  ref(gbuffer_->diffuse),
+                  ref(gbuffer_->specular)};
+    in.camera = {view_.view, view_.proj};
+    const engine::Light& light = scene_.lights.at(0);
+    EXPECT_EQ(light.type, engine::LightType::Spot);
+    in.light.type = gi::Light::Type::Spot;
+    in.light.position = light.position;
+    in.light.direction = light.direction;
+    in.light.color = light.color;
+    in.light.intensity = light.intensity;
+    in.light.innerConeAngle = light.innerConeAngle;
+    in.light.outerConeAngle = light.outerConeAngle;
+    return in;
+  }
+
+  static gi::Settings smallSettings() {
+    gi::Settings s;
+    s.rsmSize = 64;
+    s.vsglCount = 64;
+    s.brsm.importanceCount = 128;
+    s.brsm.gridSize = 16;
+    s.ism.pointsPerVsgl = 512;
+    s.ism.pointCount = 1u << 14;
+    return s;
+  }
+
+  // The host's view of an output image, read back through a non-owning engine image.
+  std::vector<glm::vec4> readOutput(const gi::ImageRef& ref) {
+    engine::ImageDesc desc;
+    desc.width = kWidth;
+    desc.height = kHeight;
+    desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    engine::Image image = engine::Image::borrow(ref.image, ref.view, desc, ref.layout);
+    return image.readbackRgba32f(ctx());
+  }
+
+  engine::Scene scene_;
+  engine::View view_;
+  std::unique_ptr<engine::SceneGpu> gpuScene_;
+  std::unique_ptr<engine::GBuffer> gbuffer_;
+};
+
+TEST_F(IndirectLightingApiTest, HostRecordsAndComposites) {
+  for (gi::PdfKind pdf : {gi::PdfKind::Brsm, gi::PdfKind::Flux}) {
+    gi::Settings settings = smallSettings();
+    settings.pdf = pdf;
+    gi::Status status;
+    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+    ASSERT_TRUE(lighting) << status.message;
+    ASSERT_TRUE(lighting->setScene(geometry()));
+    toReadOnly();
+    gi::FrameInput in = input();
+    ASSERT_EQ(in.gbuffer.depth.layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    gi::FrameOutput out;
+    // Two frames in one command buffer each, as a host loop would.
+    for (int frame = 0; frame < 2; ++frame) {
+      ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        gi::Status s = lighting->record(cmd, in, &out);
+        EXPECT_TRUE(s) << s.message;
+      });
+      // The G-buffer comes back in the layout the module reports; the host tracks it.
+      ASSERT_EQ(out.gbufferLayout, VK_IMAGE_LAYOUT_GENERAL);
+      for (engine::Image* image :
+           {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+        image->setLayout(out.gbufferLayout);
+      in = input();
+    }
+    ASSERT_EQ(out.indirectDiffuse.layout, VK_IMAGE_LAYOUT_GENERAL);
+    ASSERT_EQ(out.indirectGlossy.layout, VK_IMAGE_LAYOUT_GENERAL);
+    ASSERT_EQ(out.vsglCount, settings.vsglCount);
+    ASSERT_NE(out.vsgls, VkBuffer(VK_NULL_HANDLE));
+
+    // The host can use its G-buffer again after the module (a read-back here).
+    std::vector<float> depth(size_t{kWidth} * kHeight);
+    {
+      auto bytes = gbuffer_->depth.readback(ctx());
+      std::memcpy(depth.data(), bytes.data(), bytes.size());
+    }
+    const std::vector<glm::vec4> diffuse = readOutput(out.indirectDiffuse);
+    const std::vector<glm::vec4> glossy = readOutput(out.indirectGlossy);
+    size_t lit = 0;
+    for (size_t i = 0; i < depth.size(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_TRUE(std::isfinite(diffuse[i][c]) && diffuse[i][c] >= 0.0f) << i;
+        ASSERT_TRUE(std::isfinite(glossy[i][c]) && glossy[i][c] >= 0.0f) << i;
+      }
+      if (depth[i] >= 1.0f) {
+        EXPECT_EQ(glm::vec3(diffuse[i]), glm::vec3(0.0f)) << "sky pixel " << i;
+      } else {
+        lit += diffuse[i].g > 0.0f;
+      }
+    }
+    // The Cornell box's walls see the lit floor: almost every surface pixel gets indirect light.
+    EXPECT_GT(lit, depth.size() / 2) << "pdf " << int(pdf);
+
+    const std::vector<gi::PassTime> times = lighting->lastFrameTimes();
+    bool shading = false, total = false;
+    for (const gi::PassTime& t : times) {
+      shading |= t.name == "vsgl shading";
+      total |= t.name == "frame" && t.ms > 0.0;
+    }
+    EXPECT_TRUE(shading && total);
+  }
+}
+
+TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
+  gi::Settings settings = smallSettings();
+  settings.rsmSize = 100;
+  gi::Status status;
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message, "Settings.rsmSize: 100 is not a power of two in [16, 2048]");
+
+  settings = smallSettings();
+  auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+  ASSERT_TRUE(lighting) << status.message;
+  gi::FrameOutput out;
+  // No scene yet: nothing is recorded, and the status says why.
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    gi::Status s = lighting->record(cmd, input(), &out);
+    EXPECT_FALSE(s);
+    EXPECT_NE(s.message.find("setScene"), std::string::npos) << s.message;
+  });
+  gi::SceneGeometry empty = geometry();
+  empty.triangleCount = 0;
+  EXPECT_FALSE(lighting->setScene(empty));
+  ASSERT_TRUE(lighting->setScene(geometry()));
+  // A G-buffer of another size is refused (resolution change = recreate).
+  gi::FrameInput wrong = input();
+  wrong.gbuffer.width = kWidth / 2;
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    gi::Status s = lighting->record(cmd, wrong, &out);
+    EXPECT_FALSE(s);
+    EXPECT_NE(s.message.find("recreate"), std::string::npos) << s.message;
+  });
+  // Per-frame settings change in place; creation settings are refused.
+  gi::Settings next = settings;
+  next.rule = gi::KernelRule::Tok15;
+  next.ismEnabled = false;
+  EXPECT_TRUE(lighting->setSettings(next));
+  next.rsmSize = 128;
+  EXPECT_FALSE(lighting->setSettings(next));
+  EXPECT_EQ(lighting->settings().rsmSize, 64u);
+}
+
+}  // namespace
