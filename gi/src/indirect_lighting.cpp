@@ -73,19 +73,6 @@ void acquireHostImages(VkCommandBuffer cmd, engine::GBuffer& g) {
   vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-// Our outputs, written by compute, become visible to whatever the host does next.
-void releaseOutputs(VkCommandBuffer cmd) {
-  VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  b.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-  b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  b.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.memoryBarrierCount = 1;
-  dep.pMemoryBarriers = &b;
-  vkCmdPipelineBarrier2(cmd, &dep);
-}
-
 Status failure(const std::string& message) {
   return {false, message};
 }
@@ -185,37 +172,32 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
                       &profiler);
     generator.record(cmd, attributes, rsmView, {settings.vsglCount, settings.kernelScale, rule},
                      &profiler);
-    VsglShade::Inputs shading{&generator.vsgls(), settings.vsglCount,
-                              settings.glossy ? VSGL_SHADE_GLOSSY : 0u, &ism.atlas(), ism.params()};
-    if (settings.ismEnabled) {
+    // The maps are built for the shading's visibility or for the debug view, whichever asks.
+    if (settings.ismEnabled || settings.debugVsgl >= 0) {
       if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
       ismPointsStale = false;
       ism.recordBuild(cmd, *scene, generator.vsgls(), settings.vsglCount, &profiler);
-      engine::computeBarrier(cmd);
-      shading.flags |= VSGL_SHADE_VISIBILITY;
     }
-    shade.record(cmd, gbuffer, camera.invViewProj, shading, indirect, &profiler);
+    const uint32_t flags = (settings.glossy ? VSGL_SHADE_GLOSSY : 0u) |
+                           (settings.ismEnabled ? VSGL_SHADE_VISIBILITY : 0u);
+    shade.record(cmd, gbuffer, camera.invViewProj,
+                 {&generator.vsgls(), settings.vsglCount, flags, &ism.atlas(), ism.params()},
+                 indirect, &profiler);
     if (settings.debugVsgl >= 0) {
       if (!debugVisibility) {
         engine::ImageDesc desc;
         desc.width = width;
         desc.height = height;
         desc.format = VK_FORMAT_R32_SFLOAT;
-        debugVisibility.emplace(ctx, desc);
-        // A fresh image's first barrier comes from UNDEFINED inside this command buffer.
-        engine::imageBarrier(cmd, *debugVisibility, VK_IMAGE_LAYOUT_GENERAL);
+        debugVisibility.emplace(ctx, desc);  // recordVisibility gives it its first layout
       }
-      if (!settings.ismEnabled && ismPointsStale) {
-        ism.recordPoints(cmd, *scene, &profiler);
-        ismPointsStale = false;
-      }
-      if (!settings.ismEnabled)
-        ism.recordBuild(cmd, *scene, generator.vsgls(), settings.vsglCount, &profiler);
-      engine::computeBarrier(cmd);
       ism.recordVisibility(cmd, gbuffer, camera, generator.vsgls(),
                            static_cast<uint32_t>(settings.debugVsgl), *debugVisibility, &profiler);
     }
-    releaseOutputs(cmd);
+    // The outputs, written by compute, become visible to whatever the host does next.
+    engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
   }
 
   out = {};

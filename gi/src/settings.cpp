@@ -3,6 +3,7 @@
 #include <bit>
 #include <exception>
 
+#include "passes/brsm_pdf.h"
 #include "passes/ism.h"
 
 namespace gi {
@@ -33,15 +34,12 @@ std::string validateSettings(const Settings& s) {
     return field("rule", std::to_string(uint32_t(s.rule)), "is neither Tok15 nor Modified");
   if (s.pdf != PdfKind::Flux && s.pdf != PdfKind::Brsm)
     return field("pdf", std::to_string(uint32_t(s.pdf)), "is neither Flux nor Brsm");
-  if (s.brsm.importanceCount < 1 || s.brsm.importanceCount > 65536)
-    return field("brsm.importanceCount", std::to_string(s.brsm.importanceCount),
-                 "is outside [1, 65536]");
-  if (!std::has_single_bit(s.brsm.gridSize) || s.brsm.gridSize > s.rsmSize)
-    return field(
-        "brsm.gridSize", std::to_string(s.brsm.gridSize),
-        ("is not a power of two in [1, rsmSize = " + std::to_string(s.rsmSize) + "]").c_str());
-  if (!(s.brsm.fluxMix > 0.0f && s.brsm.fluxMix <= 1.0f))
-    return field("brsm.fluxMix", std::to_string(s.brsm.fluxMix), "is outside (0, 1]");
+  // The passes' own checks, which name the field, so the ranges are written once.
+  try {
+    validateBrsmSettings(s.brsm, s.rsmSize);
+  } catch (const std::exception& e) {
+    return std::string("Settings.brsm: ") + e.what();
+  }
   try {
     validateIsmSettings(s.ism);
   } catch (const std::exception& e) {

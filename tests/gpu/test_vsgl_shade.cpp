@@ -127,7 +127,8 @@ std::vector<gpu::Vsgl> hardCaseVsgls(const engine::Scene& scene, const gi::Shade
     const glm::vec3 mean =
         centre + extent * glm::vec3(0.4f * std::cos(6.28f * t), 0.35f * (t - 0.5f),
                                     0.4f * std::sin(6.28f * t));
-    const glm::vec3 axis(std::sin(2.4f * i), std::cos(1.7f * i), std::sin(0.9f * i + 1.0f));
+    const float fi = float(i);
+    const glm::vec3 axis(std::sin(2.4f * fi), std::cos(1.7f * fi), std::sin(0.9f * fi + 1.0f));
     const float variance = 1e-4f * std::pow(10.0f, float(i % 4));
     add(lobe(mean, variance, axis, 2.2925f, glm::vec3(1.0f, 0.7f, 0.4f)),
         lobe(mean, variance, -axis, std::pow(10.0f, float(i % 5)), glm::vec3(0.3f, 0.5f, 1.0f)));
@@ -182,7 +183,9 @@ TEST_F(VsglShadeTest, MatchesReference) {
         largest[1] = std::max({largest[1], r.glossy.r, r.glossy.g, r.glossy.b});
       }
     ASSERT_GT(largest[0], 0.0);
-    if (glossy) ASSERT_GT(largest[1], 0.0);
+    if (glossy) {
+      ASSERT_GT(largest[1], 0.0);
+    }
     if (visible) {
       std::printf("ISM: %zu of %zu pixel-VSGL pairs (partly) occluded\n", occluded, pairs);
       ASSERT_GT(occluded, pairs / 10) << "the visibility variant must test occlusion";
@@ -210,9 +213,12 @@ TEST_F(VsglShadeTest, MatchesReference) {
     }
     std::printf("flags %u: worst error / tolerance: diffuse %.3f, glossy %.3f; %zu pixels over\n",
                 flags, worst[0], worst[1], failedPixels);
-    if (visible) EXPECT_LE(failedPixels, cpu.size() / 100);
-    if (!glossy)
+    if (visible) {
+      EXPECT_LE(failedPixels, cpu.size() / 100);
+    }
+    if (!glossy) {
       for (const glm::vec4& g : gpu.glossy) EXPECT_EQ(glm::vec3(g), glm::vec3(0.0f));
+    }
   }
 }
 

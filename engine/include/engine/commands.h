@@ -8,6 +8,10 @@
 
 namespace engine {
 
+// A global memory dependency from (srcStage, srcAccess) to (dstStage, dstAccess).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
 // Makes shader writes of everything recorded before visible to shaders recorded after.
 void computeBarrier(VkCommandBuffer cmd);
 

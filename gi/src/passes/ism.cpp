@@ -109,7 +109,15 @@ Ism::Ism(engine::Context& ctx, const IsmSettings& settings, uint32_t maxVsgls)
   atlas.mips = static_cast<uint32_t>(std::countr_zero(settings.mapSize)) + 1;
   atlas.format = VK_FORMAT_R32_UINT;
   atlas_ = engine::Image(ctx, atlas);
+  // GENERAL for the object's life, recorded before the first frame that uses them (on a host's
+  // device: at its next recordDeferredSetup).
+  engine::initialLayout(ctx, positions_, VK_IMAGE_LAYOUT_GENERAL);
+  engine::initialLayout(ctx, atlas_, VK_IMAGE_LAYOUT_GENERAL);
 }
+
+static_assert(IsmNearest == ISM_PCF_NEAREST && IsmBilinear == ISM_PCF_BILINEAR &&
+                  IsmBox3 == ISM_PCF_BOX3,
+              "gi::IsmFilter (settings.h) names the ISM_PCF_* values of shared/ism.h");
 
 glm::uvec2 Ism::tileOrigin(uint32_t k) const {
   const uint32_t mask = (1u << tilesPerRowLog2_) - 1;
@@ -182,8 +190,6 @@ void Ism::recordSplat(VkCommandBuffer cmd, const engine::SceneGpu& scene,
   const uint32_t stride = settings_.pointCount / m;
   {
     engine::ProfileScope scope(profiler, cmd, "ism positions");
-    if (positions_.layout() != VK_IMAGE_LAYOUT_GENERAL)
-      engine::imageBarrier(cmd, positions_, VK_IMAGE_LAYOUT_GENERAL);
     const gpu::IsmPositionsPush push{m, stride, std::min(vsglCount, stride), 0};
     positionsProgram_.dispatch(cmd,
                                {Binding::storage(points_), Binding::storage(scene.vertices),
@@ -216,8 +222,6 @@ void Ism::recordPullPush(VkCommandBuffer cmd, uint32_t vsglCount, engine::GpuPro
                         std::to_string(maxVsgls_) + " the atlas was made for");
   if (vsglCount == 0) return;
   engine::ProfileScope scope(profiler, cmd, "ism pull-push");
-  if (atlas_.layout() != VK_IMAGE_LAYOUT_GENERAL)
-    engine::imageBarrier(cmd, atlas_, VK_IMAGE_LAYOUT_GENERAL);
   const auto levels = static_cast<uint32_t>(std::countr_zero(settings_.mapSize));
   // Only the rows of tiles in use.
   const uint32_t tilesPerRow = 1u << tilesPerRowLog2_;
@@ -258,8 +262,6 @@ void Ism::recordVisibility(VkCommandBuffer cmd, const engine::GBuffer& gbuffer,
   engine::ProfileScope scope(profiler, cmd, "ism visibility");
   if (out.layout() != VK_IMAGE_LAYOUT_GENERAL)
     engine::imageBarrier(cmd, out, VK_IMAGE_LAYOUT_GENERAL);
-  if (atlas_.layout() != VK_IMAGE_LAYOUT_GENERAL)
-    engine::imageBarrier(cmd, atlas_, VK_IMAGE_LAYOUT_GENERAL);
   gpu::IsmVisibilityPush push{};
   push.invViewProj = view.invViewProj;
   push.viewport = glm::uvec2(gbuffer.width, gbuffer.height);

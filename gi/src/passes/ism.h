@@ -28,8 +28,8 @@ class Ism {
  public:
   // Allocates the atlas for up to `maxVsgls` VSGLs, [1, 65535] (its side must fit the device's
   // image limit: 16384 texels allow 4096 VSGLs at 256^2) and the point pool; the settings are fixed
-  // for the object's lifetime (recreate to change them). Submits nothing: the images get their
-  // GENERAL layout in the first command buffer that uses them.
+  // for the object's lifetime (recreate to change them). Submits nothing on a host's device: the
+  // images get their GENERAL layout through engine::initialLayout.
   Ism(engine::Context& ctx, const IsmSettings& settings, uint32_t maxVsgls);
 
   // Regenerates the point pool from `scene` (call after a scene change, not per frame); grows
