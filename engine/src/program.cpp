@@ -5,7 +5,8 @@
 namespace engine {
 
 ComputeProgram::ComputeProgram(Context& ctx, std::string name, std::span<const uint32_t> spirv,
-                               std::vector<VkDescriptorType> bindings, uint32_t pushConstantBytes)
+                               std::vector<VkDescriptorType> bindings, uint32_t pushConstantBytes,
+                               std::span<const uint32_t> specialization)
     : ctx_(&ctx),
       name_(std::move(name)),
       bindingTypes_(std::move(bindings)),
@@ -39,6 +40,12 @@ ComputeProgram::ComputeProgram(Context& ctx, std::string name, std::span<const u
   pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   pipelineInfo.stage.module = module;
   pipelineInfo.stage.pName = "main";
+  std::vector<VkSpecializationMapEntry> entries;
+  for (uint32_t i = 0; i < specialization.size(); ++i)
+    entries.push_back({i, i * uint32_t(sizeof(uint32_t)), sizeof(uint32_t)});
+  VkSpecializationInfo specializationInfo{static_cast<uint32_t>(entries.size()), entries.data(),
+                                          specialization.size_bytes(), specialization.data()};
+  if (!specialization.empty()) pipelineInfo.stage.pSpecializationInfo = &specializationInfo;
   pipelineInfo.layout = layout_;
   VkResult result =
       vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline_);

@@ -60,6 +60,18 @@ VkInstance createInstance(bool validation) {
   return instance;
 }
 
+// VSGL shading broadcasts each VSGL across a subgroup (GL_KHR_shader_subgroup_ballot).
+std::string missingSubgroupOperations(VkPhysicalDevice device) {
+  VkPhysicalDeviceSubgroupProperties subgroup{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
+  vkGetPhysicalDeviceProperties2(device, &props);
+  if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) ||
+      !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT))
+    return "no subgroup ballot operations in compute shaders";
+  return {};
+}
+
 // Everything the module relies on; a device lacking any of it is listed with the reason.
 std::string unsuitableReason(VkPhysicalDevice device, uint32_t* queueFamily) {
   VkPhysicalDeviceProperties props;
@@ -86,6 +98,7 @@ std::string unsuitableReason(VkPhysicalDevice device, uint32_t* queueFamily) {
     return std::strcmp(e.extensionName, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME) == 0;
   });
   if (!push) return "VK_KHR_push_descriptor missing";
+  if (std::string missing = missingSubgroupOperations(device); !missing.empty()) return missing;
 
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
@@ -296,6 +309,8 @@ Context::Context(const ExternalDevice& external) : borrowed_(true) {
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
   if (properties_.apiVersion < VK_API_VERSION_1_3)
     throw Error("ExternalDevice: '" + info_.name + "' is not a Vulkan 1.3 device");
+  if (std::string missing = missingSubgroupOperations(physicalDevice_); !missing.empty())
+    throw Error("ExternalDevice: '" + info_.name + "' has " + missing);
   cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
   if (!cmdPushDescriptorSet)

@@ -1,9 +1,9 @@
 // vsgl_render: renders a glTF or built-in scene with the compute rasterizer, direct light and
 // one-bounce VSGL indirect light, writes linear EXRs, tone-mapped PNGs and debug pictures, and
-// prints per-pass GPU times (median of the measured frames, after a warm-up frame that pays
-// for pipeline compilation). It is a host renderer like any other: the engine library renders
-// its G-buffer and direct light, and the indirect light comes only through the public API of
-// gi/include (docs/integration.md).
+// prints per-pass GPU times (median of the measured frames, after warm-up frames: the first
+// frame pays for pipeline compilation). It is a host renderer like any other: the engine library
+// renders its G-buffer and direct light, and the indirect light comes only through the public API
+// of gi/include (docs/integration.md).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -103,7 +103,7 @@ int run(const render::Options& o) {
   engine::GpuProfiler profiler(ctx);
   render::PassTable passTimes;
   gi::FrameOutput output;
-  for (uint32_t frame = 0; frame <= o.frames; ++frame) {
+  for (uint32_t frame = 0; frame < o.warmup + o.frames; ++frame) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       profiler.beginFrame(cmd);
       engine::ProfileScope total(&profiler, cmd, "host frame");
@@ -113,7 +113,7 @@ int run(const render::Options& o) {
       direct.record(cmd, gpuScene, rasterizer, gbuffer, view, radiance, &profiler);
       if (indirect) render::check(indirect->record(cmd, input, &output));
     });
-    if (frame == 0) continue;  // warm-up: pipelines compile at their first dispatch
+    if (frame < o.warmup) continue;  // lavapipe compiles pipelines at their first dispatch
     for (const auto& pass : profiler.results()) passTimes.add(pass.name, pass.ms);
     if (indirect)
       for (const auto& pass : indirect->lastFrameTimes()) passTimes.add("gi " + pass.name, pass.ms);

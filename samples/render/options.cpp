@@ -17,7 +17,9 @@ const char* usage() {
          "cornell)\n"
          "  --out DIR            output directory (default out)\n"
          "  --width N --height N image size in pixels, 1..8192 (default 640x360)\n"
-         "  --frames N           measured frames after one warm-up frame, 1..1000 (default 3)\n"
+         "  --frames N           measured frames, 1..1000 (default 3)\n"
+         "  --warmup N           unmeasured frames before them, 0..100 (default 1; the first\n"
+         "                       frame also pays for compiling the pipelines)\n"
          "  --shadow-res N       shadow-map texels per side, 16..4096 (default: from the image "
          "size)\n"
          "  --no-shadows         direct light without shadow maps\n"
@@ -69,6 +71,8 @@ Options parseOptions(int argc, char** argv) {
       o.height = parseUint(arg, value(), 1, 8192);
     else if (arg == "--frames")
       o.frames = parseUint(arg, value(), 1, 1000);
+    else if (arg == "--warmup")
+      o.warmup = parseUint(arg, value(), 0, 100);
     else if (arg == "--shadow-res")
       o.shadowResolution = parseUint(arg, value(), 16, 4096);
     else if (arg == "--no-shadows")

@@ -15,7 +15,8 @@ struct Options {
   std::string outDir = "out";
   uint32_t width = 640;
   uint32_t height = 360;
-  uint32_t frames = 3;            // measured frames after one warm-up frame
+  uint32_t frames = 3;            // measured frames
+  uint32_t warmup = 1;            // unmeasured frames before them
   uint32_t shadowResolution = 0;  // 0 = automatic: see shadowResolutionFor()
   bool shadows = true;
   std::optional<float> exposureEv;

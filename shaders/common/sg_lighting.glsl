@@ -211,39 +211,71 @@ float ggxVisibilityRatioMean(float sharpness, float axisCosine, float nv, float 
   return meanCosine * 2.0 * sv / (c * sv + nv * sc);
 }
 
-// integral G(w; light.axis, light.sharpness) f_spec(w, view) (w . n)^+ dw for a UNIT-amplitude SG
-// (light.logAmplitude is ignored), f_spec brdf.glsl's specular lobe (GGX alpha floored at 1e-3,
-// height-correlated Smith, Schlick with f0). Unit normal and view (surface to viewer); n . v is
-// clamped to 1e-4 as in brdf.glsl. Step by step as sg_math.cpp sgGgxReflection:
-//   K = c(beta) (w K_sharp + (1 - w) K_wide),   E = W_q F(v . h_q)^w (A(f0) / W_0)^(1 - w).
-vec3 sgGgxReflection(Sg light, vec3 normal, vec3 view, float alpha, vec3 f0) {
-  float a = clamp(alpha, kSgGgxMinAlpha, 1.0);
-  float alpha2 = a * a;
-  float lambda = max(light.sharpness, 0.0);
+// The terms of sgGgxReflection that depend only on the receiver, computed once per pixel
+// (sg_math.h SgGgxReceiver): the view frame (ex along the view's tangential part, z = n), the
+// view in it, the dominant reflection direction and the reflection SG, and E's constant-light
+// end log(A(f0) / W_0).
+struct SgGgxReceiver {
+  vec3 normal;
+  vec3 ex;
+  vec3 ey;
+  vec3 wo;
+  float nv;
+  float alpha2;
+  float q;
+  float reflectionSharpness;
+  float reflectionIntegral;  // S(reflectionSharpness)
+  vec3 dominantReflection;
+  vec3 f0;
+  vec3 logWideFactor;
+};
 
-  // View frame: x along the view's tangential part, z = n.
+// Unit normal and view (surface to viewer); n . v is clamped to 1e-4 as in brdf.glsl.
+SgGgxReceiver sgGgxReceiver(vec3 normal, vec3 view, float alpha, vec3 f0) {
+  SgGgxReceiver r;
+  r.normal = normal;
+  r.f0 = f0;
+  float a = clamp(alpha, kSgGgxMinAlpha, 1.0);
+  r.alpha2 = a * a;
   float nvRaw = dot(normal, view);
-  float nv = max(nvRaw, kSgGgxMinViewCosine);
+  r.nv = max(nvRaw, kSgGgxMinViewCosine);
   vec3 tangential = view - nvRaw * normal;
   float tangentialLength = length(tangential);
-  vec3 ex;
   if (tangentialLength > kSgGgxMinTangential) {
-    ex = tangential / tangentialLength;
+    r.ex = tangential / tangentialLength;
   } else {
     vec3 helper = abs(normal.x) < 0.6 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
-    ex = normalize(cross(helper, normal));
+    r.ex = normalize(cross(helper, normal));
   }
-  vec3 ey = cross(normal, ex);
-  vec3 wo = vec3(sqrt(max(1.0 - nv * nv, 0.0)), 0.0, nv);
-  vec3 xi = vec3(dot(light.axis, ex), dot(light.axis, ey), dot(light.axis, normal));
-
+  r.ey = cross(normal, r.ex);
+  r.wo = vec3(sqrt(max(1.0 - r.nv * r.nv, 0.0)), 0.0, r.nv);
   // Dominant reflection direction: the view mirrored about the dominant visible normal [DB23].
-  float t = sqrt(alpha2 * wo.x * wo.x + nv * nv);
-  vec3 dominantNormal = normalize(vec3(alpha2 * wo.x, 0.0, t + nv));
-  vec3 dominantReflection = 2.0 * dot(wo, dominantNormal) * dominantNormal - wo;
+  float t = sqrt(r.alpha2 * r.wo.x * r.wo.x + r.nv * r.nv);
+  vec3 dominantNormal = normalize(vec3(r.alpha2 * r.wo.x, 0.0, t + r.nv));
+  r.dominantReflection = 2.0 * dot(r.wo, dominantNormal) * dominantNormal - r.wo;
   // Reflection SG sharpness lambda_r = (1 - alpha^2) / (2 alpha^2) = q / 2 ([TH19], [R]).
-  float q = (1.0 - alpha2) / alpha2;
-  float reflectionSharpness = 0.5 * q;
+  r.q = (1.0 - r.alpha2) / r.alpha2;
+  r.reflectionSharpness = 0.5 * r.q;
+  r.reflectionIntegral = sgIntegral(r.reflectionSharpness);
+  float upperCosineWide;
+  float ratioWide = ggxVisibilityRatioMean(r.reflectionSharpness, r.dominantReflection.z, r.nv,
+                                           r.alpha2, upperCosineWide);
+  vec2 table = ggxSpecularAlbedo(r.nv, a);
+  vec3 albedo = table.x + f0 * (table.y - table.x);
+  r.logWideFactor = log(max(albedo, vec3(kSgFltMin)) / max(ratioWide, kSgFltMin));
+  return r;
+}
+
+// integral G(w; light.axis, light.sharpness) f_spec(w, view) (w . n)^+ dw for a UNIT-amplitude SG
+// (light.logAmplitude is ignored), f_spec brdf.glsl's specular lobe (GGX alpha floored at 1e-3,
+// height-correlated Smith, Schlick with f0) of the receiver r. Step by step as sg_math.cpp
+// sgGgxReflection:
+//   K = c(beta) (w K_sharp + (1 - w) K_wide),   E = W_q F(v . h_q)^w (A(f0) / W_0)^(1 - w).
+vec3 sgGgxReflection(Sg light, SgGgxReceiver r) {
+  float lambda = max(light.sharpness, 0.0);
+  float nv = r.nv, q = r.q;
+  vec3 wo = r.wo;
+  vec3 xi = vec3(dot(light.axis, r.ex), dot(light.axis, r.ey), dot(light.axis, r.normal));
 
   // K, sharp part: [T24] NDF filtering, diagonal in the view frame: m_i = b_i / (lambda q + b_i)
   // with b = (lambda + q/2, lambda + q / (2 n_v^2)); the symmetric-GGX reflection pdf with
@@ -262,20 +294,18 @@ vec3 sgGgxReflection(Sg light, vec3 normal, vec3 view, float alpha, vec3 f0) {
   float sharpMass = sgIntegral(lambda) * filteredPdf;
 
   // K, wide part: the SG inner product of the light with the normalised reflection SG.
-  Sg product = sgProduct(Sg(xi, lambda, 0.0), Sg(dominantReflection, reflectionSharpness, 0.0));
-  float wideMass = exp(product.logAmplitude) * sgIntegral(product.sharpness) / sgIntegral(reflectionSharpness);
+  Sg product = sgProduct(Sg(xi, lambda, 0.0), Sg(r.dominantReflection, r.reflectionSharpness, 0.0));
+  float wideMass = exp(product.logAmplitude) * sgIntegral(product.sharpness) / r.reflectionIntegral;
 
   // The blend and the small-angle t x Gaussian peak correction, beta = lambda / q.
-  float w = lambda / (lambda + reflectionSharpness + kSgGgxWideLightBias);
+  float w = lambda / (lambda + r.reflectionSharpness + kSgGgxWideLightBias);
   float beta = q > 0.0 ? lambda / q : kSgFltMax;
   float mass = sgGgxPeakCorrection(beta) * (w * sharpMass + (1.0 - w) * wideMass);
 
   // E: visibility ratio over the product lobe, Fresnel at the half vector of its lit part, pulled
   // towards the tabulated albedo over the same model's constant-light value as the light widens.
-  float upperCosine, upperCosineWide;
-  float ratio = ggxVisibilityRatioMean(product.sharpness, product.axis.z, nv, alpha2, upperCosine);
-  float ratioWide = ggxVisibilityRatioMean(reflectionSharpness, dominantReflection.z, nv, alpha2,
-                                           upperCosineWide);
+  float upperCosine;
+  float ratio = ggxVisibilityRatioMean(product.sharpness, product.axis.z, nv, r.alpha2, upperCosine);
   // Fresnel at the product axis moved to the mean cosine of its part above the horizon.
   float horizontal = length(vec2(product.axis.x, product.axis.y));
   float sine = sqrt(max(1.0 - upperCosine * upperCosine, 0.0));
@@ -287,11 +317,8 @@ vec3 sgGgxReflection(Sg light, vec3 normal, vec3 view, float alpha, vec3 f0) {
   float vh = lobeHalfLength > 0.0 ? dot(wo, lobeHalf) / lobeHalfLength : 0.0;
   float m = 1.0 - max(vh, 0.0);
   float m2s = m * m;
-  vec3 fresnel = f0 + (1.0 - f0) * (m2s * m2s * m);
-  vec2 table = ggxSpecularAlbedo(nv, a);
-  vec3 albedo = table.x + f0 * (table.y - table.x);
-  vec3 logE = w * log(max(fresnel, vec3(kSgFltMin))) +
-              (1.0 - w) * log(max(albedo, vec3(kSgFltMin)) / max(ratioWide, kSgFltMin));
+  vec3 fresnel = r.f0 + (1.0 - r.f0) * (m2s * m2s * m);
+  vec3 logE = w * log(max(fresnel, vec3(kSgFltMin))) + (1.0 - w) * r.logWideFactor;
   return mass * ratio * exp(logE);
 }
 

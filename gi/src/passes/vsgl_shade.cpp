@@ -21,13 +21,7 @@ IndirectImages createIndirectImages(engine::Context& ctx, uint32_t width, uint32
 }
 
 VsglShade::VsglShade(engine::Context& ctx)
-    : program_(ctx, "vsgl_shade", kVsglShadeSpv,
-               {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-               sizeof(gpu::VsglShadePush)),
+    : ctx_(&ctx),
       albedoTable_(ctx, sizeof(glm::vec2) * kGgxAlbedoTableSize * kGgxAlbedoTableSize,
                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload) {
   // Host-visible memory: written here without a submit (the module never submits).
@@ -38,19 +32,32 @@ VsglShade::VsglShade(engine::Context& ctx)
 }
 
 void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const glm::mat4& invViewProj,
-                       const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler) const {
+                       const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler) {
   if (in.vsgls->size() < VkDeviceSize{in.vsglCount} * sizeof(gpu::Vsgl))
     throw engine::Error("VSGL shading: " + std::to_string(in.vsglCount) +
                         " VSGLs exceed the VSGL buffer");
+  if (in.flags >= VSGL_SHADE_VARIANTS)
+    throw engine::Error("VSGL shading: unknown flags " + std::to_string(in.flags));
+  std::optional<engine::ComputeProgram>& program = programs_[in.flags];
+  if (!program) {
+    const uint32_t specialization[] = {in.flags};
+    program.emplace(*ctx_, "vsgl_shade", kVsglShadeSpv,
+                    std::vector<VkDescriptorType>{
+                        VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                        VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                        VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                    uint32_t(sizeof(gpu::VsglShadePush)), specialization);
+  }
   engine::ProfileScope scope(profiler, cmd, "vsgl shading");
   using engine::Binding;
   gpu::VsglShadePush push{};
   push.invViewProj = invViewProj;
   push.viewport = {gbuffer.width, gbuffer.height};
   push.vsglCount = in.vsglCount;
-  push.flags = in.flags;
   push.ism = in.ism;
-  program_.dispatch(cmd,
+  program->dispatch(cmd,
                     {Binding::storageImage(gbuffer.depth), Binding::storageImage(gbuffer.normal),
                      Binding::storageImage(gbuffer.diffuse),
                      Binding::storageImage(gbuffer.specular), Binding::storage(*in.vsgls),

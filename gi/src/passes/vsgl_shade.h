@@ -2,10 +2,14 @@
 // VSGLs (shaders/gi/vsgl_shade.comp, layout in shaders/shared/vsgl_shade.h).
 #pragma once
 
+#include <array>
+#include <optional>
+
 #include "engine/gbuffer.h"
 #include "engine/profiler.h"
 #include "engine/program.h"
 #include "shared/ism.h"
+#include "shared/vsgl_shade.h"
 
 namespace gi {
 
@@ -24,17 +28,19 @@ class VsglShade {
   struct Inputs {
     const engine::Buffer* vsgls = nullptr;  // gpu::Vsgl[vsglCount]
     uint32_t vsglCount = 0;
-    uint32_t flags = 0;                       // VSGL_SHADE_*
+    uint32_t flags = 0;                       // VSGL_SHADE_*: the variant
     const engine::Image* ismAtlas = nullptr;  // Ism::atlas(), bound even when not read
     gpu::IsmParams ism{};                     // Ism::params()
   };
 
-  // `invViewProj`: the G-buffer camera's NDC -> world matrix.
+  // `invViewProj`: the G-buffer camera's NDC -> world matrix. The first record with a given
+  // `in.flags` compiles that variant of the pass (see VSGL_SHADE_VARIANTS).
   void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const glm::mat4& invViewProj,
-              const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler = nullptr) const;
+              const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler = nullptr);
 
  private:
-  engine::ComputeProgram program_;
+  engine::Context* ctx_;
+  std::array<std::optional<engine::ComputeProgram>, VSGL_SHADE_VARIANTS> programs_;
   engine::Buffer albedoTable_;  // vec2[17 x 17], gi::ggxSpecularAlbedoNode (sg_lighting.glsl)
 };
 

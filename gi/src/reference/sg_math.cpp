@@ -436,44 +436,64 @@ glm::dvec2 ggxSpecularAlbedo(double nv, double alpha) {
       glm::mix(ggxSpecularAlbedoNode(i + 1, j), ggxSpecularAlbedoNode(i + 1, j + 1), ft), fu);
 }
 
-glm::dvec3 sgGgxReflection(const Sg& light, glm::dvec3 normal, glm::dvec3 view, double alpha,
-                           glm::dvec3 f0) {
+SgGgxReceiver sgGgxReceiver(glm::dvec3 normal, glm::dvec3 view, double alpha, glm::dvec3 f0) {
+  SgGgxReceiver r;
+  r.normal = normal;
+  r.f0 = f0;
   const double a = std::clamp(alpha, kSgGgxMinAlpha, 1.0);
-  const double alpha2 = a * a;
-  const double lambda = std::max(light.sharpness, 0.0);
+  r.alpha2 = a * a;
 
   // View frame (x along the view's tangential part, z = n): the filtered NDF below is diagonal
   // in it. n . v is clamped like brdf.glsl, and the view rebuilt at that cosine.
-  const double nv = std::max(glm::dot(normal, view), kSgGgxMinViewCosine);
+  r.nv = std::max(glm::dot(normal, view), kSgGgxMinViewCosine);
   const glm::dvec3 tangential = view - glm::dot(normal, view) * normal;
   const double tangentialLength = glm::length(tangential);
-  glm::dvec3 ex;
   if (tangentialLength > kSgGgxMinTangential) {
-    ex = tangential / tangentialLength;
+    r.ex = tangential / tangentialLength;
   } else {
     // Within 1e-4 rad of the normal (or of its opposite) the azimuth of the view is lost to
     // rounding (in fp32 first) and the lobe is isotropic to O(1e-8): any tangent will do.
     const glm::dvec3 helper =
         std::abs(normal.x) < 0.6 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
-    ex = glm::normalize(glm::cross(helper, normal));
+    r.ex = glm::normalize(glm::cross(helper, normal));
   }
-  const glm::dvec3 ey = glm::cross(normal, ex);
-  const glm::dvec3 wo(std::sqrt(std::max(1.0 - nv * nv, 0.0)), 0.0, nv);
-  const glm::dvec3 xi(glm::dot(light.axis, ex), glm::dot(light.axis, ey),
-                      glm::dot(light.axis, normal));
+  r.ey = glm::cross(normal, r.ex);
+  r.wo = glm::dvec3(std::sqrt(std::max(1.0 - r.nv * r.nv, 0.0)), 0.0, r.nv);
 
   // Dominant reflection direction: the mirror image of the view about the dominant visible
   // normal, the centre of the GGX spherical-cap VNDF (Dupuy and Benyoub 2023, as
   // GGXDominantVisibleNormal in [R]; n . v > 0 here, so the plain form is stable).
-  const double t = std::sqrt(alpha2 * wo.x * wo.x + nv * nv);
-  const glm::dvec3 dominantNormal = glm::normalize(glm::dvec3(alpha2 * wo.x, 0.0, t + nv));
-  const glm::dvec3 dominantReflection = 2.0 * glm::dot(wo, dominantNormal) * dominantNormal - wo;
+  const double t = std::sqrt(r.alpha2 * r.wo.x * r.wo.x + r.nv * r.nv);
+  const glm::dvec3 dominantNormal = glm::normalize(glm::dvec3(r.alpha2 * r.wo.x, 0.0, t + r.nv));
+  r.dominantReflection = 2.0 * glm::dot(r.wo, dominantNormal) * dominantNormal - r.wo;
   // Reflection SG sharpness (1 - alpha^2) / (2 alpha^2) ([R]'s "conservative" sharpness): the
   // NDF as an SG of sharpness 2 / alpha^2 - 2 ([TH19]) mapped to reflection directions with the
   // in-plane Jacobian 1/4. Its normalised peak equals the GGX reflection pdf's peak at normal
   // incidence for small alpha. q = 1 / (projected roughness) = (1 - alpha^2) / alpha^2.
-  const double q = (1.0 - alpha2) / alpha2;
-  const double reflectionSharpness = 0.5 * q;
+  r.q = (1.0 - r.alpha2) / r.alpha2;
+  r.reflectionSharpness = 0.5 * r.q;
+
+  // The wide-light end of E (see sgGgxReflection): the tabulated albedo A(f0) over the model's
+  // own value W_0 for a constant light (the reflection SG alone), as a logarithm with an FLT_MIN
+  // floor: A can be 0 (f0 = 0 at normal incidence), where the factor is 0 either way; the floor
+  // keeps 0^0 out of the w = 0 limit.
+  double upperCosineWide = 0.0;
+  const double ratioWide = ggxVisibilityRatioMean(r.reflectionSharpness, r.dominantReflection.z,
+                                                  r.nv, r.alpha2, upperCosineWide);
+  const glm::dvec2 table = ggxSpecularAlbedo(r.nv, a);
+  const glm::dvec3 albedo = table.x + f0 * (table.y - table.x);
+  for (int c = 0; c < 3; ++c) {
+    r.logWideFactor[c] = std::log(std::max(albedo[c], kFltMin) / std::max(ratioWide, kFltMin));
+  }
+  return r;
+}
+
+glm::dvec3 sgGgxReflection(const Sg& light, const SgGgxReceiver& r) {
+  const double lambda = std::max(light.sharpness, 0.0);
+  const double nv = r.nv, q = r.q;
+  const glm::dvec3 wo = r.wo;
+  const glm::dvec3 xi(glm::dot(light.axis, r.ex), glm::dot(light.axis, r.ey),
+                      glm::dot(light.axis, r.normal));
 
   // K, sharp-light part: [T24] Section 5.2 NDF filtering. In projected space the GGX has the
   // variance-like matrix p I (p = alpha^2 / (1 - alpha^2), [TK21] Eq. 4), the light adds
@@ -499,31 +519,29 @@ glm::dvec3 sgGgxReflection(const Sg& light, glm::dvec3 normal, glm::dvec3 view, 
   // K, wide-light part: the light times the normalised reflection SG, an exact SG inner product
   // (section 4.2) divided by S(lambda_r).
   const Sg unitLight{xi, lambda, 0.0};
-  const Sg reflection{dominantReflection, reflectionSharpness, 0.0};
+  const Sg reflection{r.dominantReflection, r.reflectionSharpness, 0.0};
   const Sg product = sgProduct(unitLight, reflection);
   const double wideMass = std::exp(product.logAmplitude) * sgIntegral(product.sharpness) /
-                          sgIntegral(reflectionSharpness);
+                          sgIntegral(r.reflectionSharpness);
 
   // Both parts predict 1 / (1 + beta) for the peak of a small-angle GGX lobe convolved with the
   // light, beta = lambda / (2 lambda_r) = lambda alpha^2 / (1 - alpha^2); the exact t x Gaussian
   // peak is (1 - beta e^beta E1(beta)), hence the correction (up to -19 %).
-  const double w = lambda / (lambda + reflectionSharpness + kWideLightBias);
+  const double w = lambda / (lambda + r.reflectionSharpness + kWideLightBias);
   const double beta = q > 0.0 ? lambda / q : std::numeric_limits<double>::infinity();
   const double mass = sgGgxPeakCorrection(beta) * (w * sharpMass + (1.0 - w) * wideMass);
 
   // E: the mean W_q of f cos / p over the product lobe without Fresnel, Fresnel F_q at the half
   // vector of the lobe's lit part (below), and the same model's W_0 for a constant light (the
   // reflection SG alone), whose ratio to the tabulated albedo A(f0) corrects the model as the
-  // light widens:
+  // light widens (r.logWideFactor):
   //   E = W_q F_q^w (A(f0) / W_0)^(1 - w),
   // exact for a constant light (w = 0: E = A) and, for a sharp light (w -> 1), the visibility
   // ratio and Fresnel at the light direction. (A geometric rather than linear blend: measured
   // better for f0 = 0.04, where F_q and A / W_0 differ by up to 10x.)
-  double upperCosine = 0.0, upperCosineWide = 0.0;
+  double upperCosine = 0.0;
   const double ratio =
-      ggxVisibilityRatioMean(product.sharpness, product.axis.z, nv, alpha2, upperCosine);
-  const double ratioWide = ggxVisibilityRatioMean(reflectionSharpness, dominantReflection.z, nv,
-                                                  alpha2, upperCosineWide);
+      ggxVisibilityRatioMean(product.sharpness, product.axis.z, nv, r.alpha2, upperCosine);
   // Fresnel direction: the product axis raised (or lowered) to the mean cosine of its part above
   // the horizon, at the axis' azimuth. F varies fastest at grazing half vectors, i.e. for the
   // lobes the horizon cuts; the unlit part below must not set it. A sharp light above the
@@ -537,19 +555,20 @@ glm::dvec3 sgGgxReflection(const Sg& light, glm::dvec3 normal, glm::dvec3 view, 
   const glm::dvec3 lobeHalf = wo + fresnelAxis;
   const double lobeHalfLength = glm::length(lobeHalf);
   const double vh = lobeHalfLength > 0.0 ? glm::dot(wo, lobeHalf) / lobeHalfLength : 0.0;
-  const glm::dvec3 fresnel = schlickFresnel(f0, vh);
-  const glm::dvec2 table = ggxSpecularAlbedo(nv, a);
-  const glm::dvec3 albedo = table.x + f0 * (table.y - table.x);
+  const glm::dvec3 fresnel = schlickFresnel(r.f0, vh);
   glm::dvec3 result(0.0);
   for (int c = 0; c < 3; ++c) {
-    // Logarithms with an FLT_MIN floor: F or A can be 0 (f0 = 0 at normal incidence), where
-    // the factor is 0 either way; the floor keeps 0^0 out of the w = 0 and w = 1 limits.
+    // The FLT_MIN floor as in logWideFactor: F is 0 where f0 = 0 at normal incidence.
     const double logE =
-        w * std::log(std::max(fresnel[c], kFltMin)) +
-        (1.0 - w) * std::log(std::max(albedo[c], kFltMin) / std::max(ratioWide, kFltMin));
+        w * std::log(std::max(fresnel[c], kFltMin)) + (1.0 - w) * r.logWideFactor[c];
     result[c] = mass * ratio * std::exp(logE);
   }
   return result;
+}
+
+glm::dvec3 sgGgxReflection(const Sg& light, glm::dvec3 normal, glm::dvec3 view, double alpha,
+                           glm::dvec3 f0) {
+  return sgGgxReflection(light, sgGgxReceiver(normal, view, alpha, f0));
 }
 
 }  // namespace gi

@@ -155,4 +155,24 @@ glm::dvec2 ggxSpecularAlbedoNode(int i, int j);
 glm::dvec3 sgGgxReflection(const Sg& light, glm::dvec3 normal, glm::dvec3 view, double alpha,
                            glm::dvec3 f0);
 
+// The same split in two, for a receiver summing many lights: sgGgxReceiver holds every term that
+// depends only on the receiver (the view frame, the dominant reflection direction, the
+// reflection SG and the wide-light end of E, which needs the albedo table and a clamped-cosine
+// integral), computed once; sgGgxReflection(light, receiver) adds one light. The shading pass
+// does the same per pixel (shaders/common/sg_lighting.glsl).
+struct SgGgxReceiver {
+  glm::dvec3 normal{0.0, 0.0, 1.0};
+  glm::dvec3 ex{1.0, 0.0, 0.0}, ey{0.0, 1.0, 0.0};  // view frame: ex along the view's tangent
+  glm::dvec3 wo{0.0, 0.0, 1.0};                     // the view in that frame, n . v clamped
+  double nv = 1.0;                                  // clamped n . v
+  double alpha2 = 1.0;                              // floored alpha, squared
+  double q = 0.0;                                   // (1 - alpha^2) / alpha^2
+  double reflectionSharpness = 0.0;                 // q / 2
+  glm::dvec3 dominantReflection{0.0, 0.0, 1.0};     // in the view frame
+  glm::dvec3 f0{0.0};
+  glm::dvec3 logWideFactor{0.0};  // log(A(f0) / W_0), E's constant-light end
+};
+SgGgxReceiver sgGgxReceiver(glm::dvec3 normal, glm::dvec3 view, double alpha, glm::dvec3 f0);
+glm::dvec3 sgGgxReflection(const Sg& light, const SgGgxReceiver& receiver);
+
 }  // namespace gi

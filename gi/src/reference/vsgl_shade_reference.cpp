@@ -8,6 +8,7 @@ namespace gi {
 IndirectRadiance shadeReference(const ShadeReceiver& receiver, std::span<const gpu::Vsgl> vsgls,
                                 bool glossy, const VsglVisibility& visibility) {
   const double alpha = std::max(receiver.roughness * receiver.roughness, 1e-3);
+  const SgGgxReceiver ggx = sgGgxReceiver(receiver.normal, receiver.view, alpha, receiver.f0);
   glm::dvec3 diffuseSum(0.0);  // sum of E e^(l_p) D, times albedo at the end
   IndirectRadiance out;
   for (uint32_t k = 0; k < vsgls.size(); ++k) {
@@ -19,9 +20,7 @@ IndirectRadiance shadeReference(const ShadeReceiver& receiver, std::span<const g
       const glm::dvec3 e = v * radiance.scale * std::exp(radiance.sg.logAmplitude);
       diffuseSum += e * sgClampedCosineIntegralOverPi(radiance.sg.sharpness,
                                                       glm::dot(radiance.sg.axis, receiver.normal));
-      if (glossy)
-        out.glossy +=
-            e * sgGgxReflection(radiance.sg, receiver.normal, receiver.view, alpha, receiver.f0);
+      if (glossy) out.glossy += e * sgGgxReflection(radiance.sg, ggx);
     }
   }
   out.diffuse = diffuseSum * receiver.albedo;
