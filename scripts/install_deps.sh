@@ -11,6 +11,7 @@ packages=(
   libglm-dev                              # math
   libtinygltf-dev nlohmann-json3-dev      # glTF scenes
   libopenimageio-dev                      # EXR / PNG / texture I/O
+  libembree-dev                           # ray tracing for the CPU ground truth (gi/truth)
   libgtest-dev                            # tests
 )
 

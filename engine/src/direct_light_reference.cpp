@@ -159,28 +159,9 @@ Shading shade(const Lighting& lighting, const GBufferSample& s, glm::dvec3 p, gl
       static_cast<size_t>(lighting.shadowResolution) * lighting.shadowResolution;
   for (const gpu::GpuLight& light : lighting.setup.lights) {
     out.visibility.push_back(1.0);
-    glm::dvec3 l;
-    glm::dvec3 irradiance(light.radiance);
-    double distanceToLight = 0.0;
-    if (light.info.x == LIGHT_DIRECTIONAL) {
-      l = -glm::dvec3(light.direction);
-    } else {
-      glm::dvec3 toLight = glm::dvec3(light.position) - p;
-      double d2 = std::max(glm::dot(toLight, toLight), 1e-8);
-      distanceToLight = std::sqrt(d2);
-      l = toLight / distanceToLight;
-      irradiance /= d2;
-      double range = light.radiance.w;
-      if (range > 0.0) {
-        double r = distanceToLight / range;
-        irradiance *= std::clamp(1.0 - r * r * r * r, 0.0, 1.0);
-      }
-      if (light.info.x == LIGHT_SPOT) {
-        double cd = glm::dot(glm::dvec3(light.direction), -l);
-        double falloff = std::clamp(cd * light.spot.x + light.spot.y, 0.0, 1.0);
-        irradiance *= falloff * falloff;
-      }
-    }
+    const LightIncidence incidence = lightIncidence(light, p);
+    const glm::dvec3 l = incidence.toLight, irradiance = incidence.irradiance;
+    const double distanceToLight = incidence.distance;
     Brdf f = brdfCos(s.normal, v, l, s);
     if (f.value == glm::dvec3(0.0) || irradiance == glm::dvec3(0.0)) continue;
     if (light.info.z > 0u) {
@@ -220,6 +201,31 @@ void tangents(glm::dvec3 v, glm::dvec3& t1, glm::dvec3& t2) {
 }
 
 }  // namespace
+
+LightIncidence lightIncidence(const gpu::GpuLight& light, glm::dvec3 p) {
+  LightIncidence r;
+  r.irradiance = glm::dvec3(light.radiance);
+  if (light.info.x == LIGHT_DIRECTIONAL) {
+    r.toLight = -glm::dvec3(light.direction);
+    return r;
+  }
+  const glm::dvec3 toLight = glm::dvec3(light.position) - p;
+  const double d2 = std::max(glm::dot(toLight, toLight), 1e-8);
+  r.distance = std::sqrt(d2);
+  r.toLight = toLight / r.distance;
+  r.irradiance /= d2;
+  const double range = light.radiance.w;
+  if (range > 0.0) {
+    const double x = r.distance / range;
+    r.irradiance *= std::clamp(1.0 - x * x * x * x, 0.0, 1.0);
+  }
+  if (light.info.x == LIGHT_SPOT) {
+    const double cd = glm::dot(glm::dvec3(light.direction), -r.toLight);
+    const double falloff = std::clamp(cd * light.spot.x + light.spot.y, 0.0, 1.0);
+    r.irradiance *= falloff * falloff;
+  }
+  return r;
+}
 
 std::vector<uint64_t> shadowMapsReference(const Scene& scene, const LightSetup& setup,
                                           uint32_t resolution) {

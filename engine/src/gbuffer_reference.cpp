@@ -13,28 +13,8 @@
 namespace engine {
 namespace {
 
-struct Ray {
-  glm::dvec3 origin;
-  glm::dvec3 dir;
-};
-
-// camera_ray.glsl in double, with the same float matrix as the shader.
-glm::dvec3 unproject(const glm::dmat4& invViewProj, glm::dvec2 ndc, double z) {
-  glm::dvec4 h = invViewProj * glm::dvec4(ndc, z, 1.0);
-  return glm::dvec3(h) / h.w;
-}
-
-glm::dvec2 pixelToNdc(glm::dvec2 pixel, uint32_t width, uint32_t height) {
-  return pixel / glm::dvec2(width, height) * 2.0 - 1.0;
-}
-
-Ray cameraRay(const glm::dmat4& invViewProj, glm::dvec2 ndc) {
-  glm::dvec3 origin = unproject(invViewProj, ndc, 0.0);
-  return {origin, glm::normalize(unproject(invViewProj, ndc, 0.5) - origin)};
-}
-
 // Barycentrics (u, v) of the ray's hit with the plane of (a, b, c), as planeBarycentrics().
-glm::dvec2 planeBarycentrics(const Ray& ray, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+glm::dvec2 planeBarycentrics(const CameraRay& ray, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
   glm::dvec3 e1 = b - a, e2 = c - a;
   glm::dvec3 p = glm::cross(ray.dir, e2);
   double det = glm::dot(e1, p);
@@ -68,43 +48,15 @@ glm::dvec4 sampleBilinear(const Texture& t, glm::dvec2 uv, bool srgb) {
   return glm::mix(top, bottom, fy);
 }
 
-GBufferSample resolvePixel(const Scene& scene, const glm::dmat4& invViewProj, uint32_t x,
-                           uint32_t y, uint32_t width, uint32_t height, uint64_t vis) {
-  GBufferSample s;
-  if (static_cast<uint32_t>(vis >> 32) == RASTER_EMPTY_HI) return s;
-  s.depth = std::bit_cast<float>(static_cast<uint32_t>(vis >> 32));
+GBufferSample resolvePixel(const Scene& scene, const View& view, uint32_t x, uint32_t y,
+                           uint64_t vis) {
+  if (static_cast<uint32_t>(vis >> 32) == RASTER_EMPTY_HI) return {};
   const auto tri = static_cast<uint32_t>(vis & 0xFFFFFFFFu);
-
-  uint32_t idx[3];
-  glm::dvec3 pos[3], nrm[3];
-  glm::dvec2 uv[3];
-  for (int k = 0; k < 3; ++k) {
-    idx[k] = scene.indices[3 * size_t{tri} + k];
-    pos[k] = scene.positions[idx[k]];
-    nrm[k] = scene.normals[idx[k]];
-    uv[k] = idx[k] < scene.uvs.size() ? glm::dvec2(scene.uvs[idx[k]]) : glm::dvec2(0.0);
-  }
-  Ray ray = cameraRay(invViewProj, pixelToNdc(glm::dvec2(x + 0.5, y + 0.5), width, height));
-  glm::dvec2 bc = planeBarycentrics(ray, pos[0], pos[1], pos[2]);
-  double w0 = 1.0 - bc.x - bc.y;
-  glm::dvec2 texcoord = uv[0] * w0 + uv[1] * bc.x + uv[2] * bc.y;
-  s.normal = glm::normalize(nrm[0] * w0 + nrm[1] * bc.x + nrm[2] * bc.y);
-  if (glm::dot(glm::cross(pos[1] - pos[0], pos[2] - pos[0]), ray.dir) > 0.0) s.normal = -s.normal;
-
-  const Material& m = scene.materials[scene.triangleMaterial[tri]];
-  glm::dvec4 base(m.baseColorFactor);
-  if (m.baseColorTexture >= 0)
-    base *= sampleBilinear(scene.textures[m.baseColorTexture], texcoord, true);
-  double metallic = m.metallicFactor, roughness = m.roughnessFactor;
-  if (m.metallicRoughnessTexture >= 0) {
-    glm::dvec4 mr = sampleBilinear(scene.textures[m.metallicRoughnessTexture], texcoord, false);
-    roughness *= mr.g;  // glTF packing: G = roughness, B = metallic
-    metallic *= mr.b;
-  }
-  s.metallic = std::clamp(metallic, 0.0, 1.0);
-  s.roughness = std::clamp(roughness, 0.0, 1.0);
-  s.diffuse = glm::dvec3(base) * (1.0 - s.metallic);
-  s.f0 = glm::mix(glm::dvec3(0.04), glm::dvec3(base), s.metallic);
+  glm::dvec3 pos[3];
+  for (int k = 0; k < 3; ++k) pos[k] = scene.positions[scene.indices[3 * size_t{tri} + k]];
+  const CameraRay ray = cameraRayReference(view, glm::dvec2(x + 0.5, y + 0.5));
+  GBufferSample s = surfaceAt(scene, tri, planeBarycentrics(ray, pos[0], pos[1], pos[2]), ray.dir);
+  s.depth = std::bit_cast<float>(static_cast<uint32_t>(vis >> 32));
   return s;
 }
 
@@ -139,6 +91,54 @@ glm::dvec4 halfsToDouble(std::span<const std::byte> bytes, size_t pixel) {
 
 }  // namespace
 
+CameraRay cameraRayReference(const View& view, glm::dvec2 pixel) {
+  // camera_ray.glsl in double, with the same float matrix as the shader.
+  const glm::dmat4 invViewProj(view.invViewProj);
+  const glm::dvec2 ndc = pixel / glm::dvec2(view.width, view.height) * 2.0 - 1.0;
+  auto unproject = [&](double z) {
+    const glm::dvec4 h = invViewProj * glm::dvec4(ndc, z, 1.0);
+    return glm::dvec3(h) / h.w;
+  };
+  const glm::dvec3 origin = unproject(0.0);
+  return {origin, glm::normalize(unproject(0.5) - origin)};
+}
+
+GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 barycentrics,
+                        glm::dvec3 rayDir) {
+  uint32_t idx[3];
+  glm::dvec3 pos[3], nrm[3];
+  glm::dvec2 uv[3];
+  for (int k = 0; k < 3; ++k) {
+    idx[k] = scene.indices[3 * size_t{triangle} + k];
+    pos[k] = scene.positions[idx[k]];
+    nrm[k] = scene.normals[idx[k]];
+    uv[k] = idx[k] < scene.uvs.size() ? glm::dvec2(scene.uvs[idx[k]]) : glm::dvec2(0.0);
+  }
+  const glm::dvec2 bc = barycentrics;
+  const double w0 = 1.0 - bc.x - bc.y;
+  const glm::dvec2 texcoord = uv[0] * w0 + uv[1] * bc.x + uv[2] * bc.y;
+  GBufferSample s;
+  s.depth = 0.0f;
+  s.normal = glm::normalize(nrm[0] * w0 + nrm[1] * bc.x + nrm[2] * bc.y);
+  if (glm::dot(glm::cross(pos[1] - pos[0], pos[2] - pos[0]), rayDir) > 0.0) s.normal = -s.normal;
+
+  const Material& m = scene.materials[scene.triangleMaterial[triangle]];
+  glm::dvec4 base(m.baseColorFactor);
+  if (m.baseColorTexture >= 0)
+    base *= sampleBilinear(scene.textures[m.baseColorTexture], texcoord, true);
+  double metallic = m.metallicFactor, roughness = m.roughnessFactor;
+  if (m.metallicRoughnessTexture >= 0) {
+    glm::dvec4 mr = sampleBilinear(scene.textures[m.metallicRoughnessTexture], texcoord, false);
+    roughness *= mr.g;  // glTF packing: G = roughness, B = metallic
+    metallic *= mr.b;
+  }
+  s.metallic = std::clamp(metallic, 0.0, 1.0);
+  s.roughness = std::clamp(roughness, 0.0, 1.0);
+  s.diffuse = glm::dvec3(base) * (1.0 - s.metallic);
+  s.f0 = glm::mix(glm::dvec3(0.04), glm::dvec3(base), s.metallic);
+  return s;
+}
+
 double srgbToLinear(double encoded) {
   return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
@@ -153,11 +153,10 @@ GBufferData resolveGBufferReference(const Scene& scene, const View& view,
   g.width = view.width;
   g.height = view.height;
   g.samples.resize(visibility.size());
-  const glm::dmat4 invViewProj(view.invViewProj);
   for (uint32_t y = 0; y < view.height; ++y)
     for (uint32_t x = 0; x < view.width; ++x) {
       size_t i = size_t{y} * view.width + x;
-      g.samples[i] = resolvePixel(scene, invViewProj, x, y, view.width, view.height, visibility[i]);
+      g.samples[i] = resolvePixel(scene, view, x, y, visibility[i]);
     }
   return g;
 }

@@ -12,6 +12,24 @@
 
 namespace samples {
 
+// Walks a command line: `for (Arguments args(argc, argv); args.next();)`, then option() is the
+// word at hand and value() consumes the next one ("<option>: missing value" when there is none).
+class Arguments {
+ public:
+  Arguments(int argc, char** argv) : argc_(argc), argv_(argv) {}
+  bool next() { return ++index_ < argc_; }
+  std::string_view option() const { return argv_[index_]; }
+  std::string_view value() {
+    if (index_ + 1 >= argc_) throw engine::Error(std::string(option()) + ": missing value");
+    return argv_[++index_];
+  }
+
+ private:
+  int argc_;
+  char** argv_;
+  int index_ = 0;
+};
+
 uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi);
 float parseFloat(std::string_view option, std::string_view text, float lo, float hi);
 

@@ -128,12 +128,6 @@ void addInto(engine::ImageRgba32f& sum, const engine::ImageRgba32f& term) {
     if (i % 4 != 3) sum.pixels[i] += term.pixels[i];
 }
 
-void writePair(const std::string& base, const engine::ImageRgba32f& image,
-               const engine::ToneMapSettings& toneMap) {
-  engine::writeExr(base + ".exr", image);
-  engine::writePng(base + ".png", image.width, image.height, engine::toneMap(image, toneMap));
-}
-
 void PassTable::add(const std::string& name, double ms) {
   if (!times_.count(name)) order_.push_back(name);
   times_[name].push_back(ms);

@@ -46,9 +46,6 @@ std::vector<float> readVisibility(engine::Context& ctx, const gi::FrameOutput& o
                                   uint32_t width, uint32_t height);
 
 void addInto(engine::ImageRgba32f& sum, const engine::ImageRgba32f& term);
-// <base>.exr (linear) and <base>.png (tone-mapped).
-void writePair(const std::string& base, const engine::ImageRgba32f& image,
-               const engine::ToneMapSettings& toneMap);
 
 // Per-pass GPU times over the measured frames, printed as medians.
 class PassTable {

@@ -12,7 +12,6 @@
 #include <map>
 
 #include "debug_views.h"
-#include "engine/builtin_scenes.h"
 #include "engine/commands.h"
 #include "engine/direct_light.h"
 #include "engine/gbuffer.h"
@@ -26,24 +25,11 @@
 #include "gi_host.h"
 #include "options.h"
 #include "program_exit.h"
+#include "scene_files.h"
 
 namespace {
 
 using engine::Error;
-
-bool isBuiltin(const std::string& name) {
-  auto names = engine::builtinSceneNames();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-engine::Scene loadScene(const std::string& name) {
-  if (isBuiltin(name)) return engine::makeBuiltinScene(name);
-  std::filesystem::path path(name);
-  if (path.extension() != ".gltf" && path.extension() != ".glb")
-    throw Error("--scene: '" + name +
-                "' is neither a built-in scene (cornell, atrium, checker) nor a .gltf/.glb file");
-  return engine::loadGltf(name);
-}
 
 int listDevices() {
   for (const auto& d : engine::Context::listDevices())
@@ -61,16 +47,11 @@ int run(const render::Options& o) {
   if (o.listDevices) return listDevices();
 
   auto wallStart = std::chrono::steady_clock::now();
-  engine::Scene scene = loadScene(o.scene);
+  engine::Scene scene = samples::loadScene(o.scene);
   std::string stem = std::filesystem::path(o.scene).stem().string();
   if (!o.exportGltf.empty()) engine::writeGltf(scene, o.exportGltf);
-  engine::Camera camera =
-      scene.cameras.empty() ? engine::defaultCamera(scene) : scene.cameras.front();
-  engine::View view = engine::cameraView(camera, o.width, o.height);
-
-  std::error_code ec;
-  std::filesystem::create_directories(o.outDir, ec);
-  if (ec) throw Error(o.outDir + ": cannot create output directory: " + ec.message());
+  engine::View view = samples::sceneView(scene, o.width, o.height);
+  samples::createOutputDirectory(o.outDir);
 
   engine::Context ctx({o.validation, o.device});
   std::printf("device: %s (%s)\nscene: %s, %u triangles, %zu lights, %ux%u, shadow maps %u^2%s\n",
@@ -126,7 +107,7 @@ int run(const render::Options& o) {
 
   std::string base = (std::filesystem::path(o.outDir) / stem).string();
   // Built-in scenes exist only as code; a .gltf copy lets other tools open the same scene.
-  if (isBuiltin(o.scene)) engine::writeGltf(scene, base + ".gltf");
+  if (samples::isBuiltinScene(o.scene)) engine::writeGltf(scene, base + ".gltf");
   engine::ImageRgba32f image = render::readRadiance(ctx, radiance);
   engine::ToneMapSettings toneMap{o.exposureEv};
   if (indirect) {
@@ -135,7 +116,7 @@ int run(const render::Options& o) {
     render::addInto(image, result.glossy);
     engine::ImageRgba32f only = result.diffuse;
     render::addInto(only, result.glossy);
-    render::writePair(base + "_indirect", only, toneMap);
+    samples::writePair(base + "_indirect", only, toneMap);
     std::vector<uint8_t> frameRgba = engine::toneMap(image, toneMap);
     std::vector<gpu::Vsgl> vsgls = render::readVsgls(ctx, output);
     engine::writePng(
@@ -154,7 +135,7 @@ int run(const render::Options& o) {
       std::printf("wrote %s_visibility.png (ISM visibility of VSGL %u)\n", base.c_str(), k);
     }
   }
-  render::writePair(base, image, toneMap);
+  samples::writePair(base, image, toneMap);
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   std::printf(
       "wrote %s.exr (linear) and %s.png (exposure x%.3g, ACES filmic, sRGB)%s in %.2f s "

@@ -55,60 +55,57 @@ Options parseOptions(int argc, char** argv) {
   // Shading costs ~N x pixels (0.3-0.6 us per pair on lavapipe): 128 VSGLs keep the default run
   // under a minute on 2 cores.
   o.gi.vsglCount = 128;
-  for (int i = 1; i < argc; ++i) {
-    std::string_view arg = argv[i];
-    auto value = [&]() -> std::string_view {
-      if (i + 1 >= argc) throw engine::Error(std::string(arg) + ": missing value");
-      return argv[++i];
-    };
+  for (samples::Arguments args(argc, argv); args.next();) {
+    const std::string_view arg = args.option();
     if (arg == "--scene")
-      o.scene = value();
+      o.scene = args.value();
     else if (arg == "--out")
-      o.outDir = value();
+      o.outDir = args.value();
     else if (arg == "--width")
-      o.width = parseUint(arg, value(), 1, 8192);
+      o.width = parseUint(arg, args.value(), 1, 8192);
     else if (arg == "--height")
-      o.height = parseUint(arg, value(), 1, 8192);
+      o.height = parseUint(arg, args.value(), 1, 8192);
     else if (arg == "--frames")
-      o.frames = parseUint(arg, value(), 1, 1000);
+      o.frames = parseUint(arg, args.value(), 1, 1000);
     else if (arg == "--warmup")
-      o.warmup = parseUint(arg, value(), 0, 100);
+      o.warmup = parseUint(arg, args.value(), 0, 100);
     else if (arg == "--shadow-res")
-      o.shadowResolution = parseUint(arg, value(), 16, 4096);
+      o.shadowResolution = parseUint(arg, args.value(), 16, 4096);
     else if (arg == "--no-shadows")
       o.shadows = false;
     else if (arg == "--exposure")
-      o.exposureEv = parseFloat(arg, value(), -64.0f, 64.0f);
+      o.exposureEv = parseFloat(arg, args.value(), -64.0f, 64.0f);
     else if (arg == "--device")
-      o.device = value();
+      o.device = args.value();
     else if (arg == "--list-devices")
       o.listDevices = true;
     else if (arg == "--validation")
       o.validation = true;
     else if (arg == "--export-gltf")
-      o.exportGltf = value();
+      o.exportGltf = args.value();
     else if (arg == "--no-indirect")
       o.indirect = false;
     else if (arg == "--method")
       o.gi.rule = parseChoice<gi::KernelRule>(
-          arg, value(), {{"modified", gi::KernelRule::Modified}, {"tok15", gi::KernelRule::Tok15}});
+          arg, args.value(),
+          {{"modified", gi::KernelRule::Modified}, {"tok15", gi::KernelRule::Tok15}});
     else if (arg == "--pdf")
       o.gi.pdf = parseChoice<gi::PdfKind>(
-          arg, value(), {{"brsm", gi::PdfKind::Brsm}, {"flux", gi::PdfKind::Flux}});
+          arg, args.value(), {{"brsm", gi::PdfKind::Brsm}, {"flux", gi::PdfKind::Flux}});
     else if (arg == "--count")
-      o.gi.vsglCount = parseUint(arg, value(), 1, 65535);
+      o.gi.vsglCount = parseUint(arg, args.value(), 1, 65535);
     else if (arg == "--k")
-      o.gi.kernelScale = parseFloat(arg, value(), 1.0f, 65536.0f);
+      o.gi.kernelScale = parseFloat(arg, args.value(), 1.0f, 65536.0f);
     else if (arg == "--rsm")
-      o.gi.rsmSize = parseUint(arg, value(), 16, 2048);
+      o.gi.rsmSize = parseUint(arg, args.value(), 16, 2048);
     else if (arg == "--ism")
-      o.gi.ismEnabled = parseChoice<bool>(arg, value(), {{"on", true}, {"off", false}});
+      o.gi.ismEnabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--ism-size")
-      o.gi.ism.mapSize = parseUint(arg, value(), 16, 256);
+      o.gi.ism.mapSize = parseUint(arg, args.value(), 16, 256);
     else if (arg == "--no-glossy")
       o.gi.glossy = false;
     else if (arg == "--debug-vsgl")
-      o.debugVsgl = static_cast<int32_t>(parseUint(arg, value(), 0, 65535));
+      o.debugVsgl = static_cast<int32_t>(parseUint(arg, args.value(), 0, 65535));
     else if (arg == "--help" || arg == "-h")
       o.help = true;
     else

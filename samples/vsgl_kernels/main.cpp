@@ -70,38 +70,34 @@ const char* usage() {
 Options parseOptions(int argc, char** argv) {
   Options o;
   std::string_view kText = "1";  // as typed, for the range check once N is known
-  for (int i = 1; i < argc; ++i) {
-    std::string_view arg = argv[i];
-    auto value = [&]() -> std::string_view {
-      if (i + 1 >= argc) throw Error(std::string(arg) + ": missing value");
-      return argv[++i];
-    };
+  for (samples::Arguments args(argc, argv); args.next();) {
+    const std::string_view arg = args.option();
     if (arg == "--scene")
-      o.scene = value();
+      o.scene = args.value();
     else if (arg == "--out")
-      o.outDir = value();
+      o.outDir = args.value();
     else if (arg == "--rsm")
-      o.rsmSize = samples::parseUint(arg, value(), 16, 2048);
+      o.rsmSize = samples::parseUint(arg, args.value(), 16, 2048);
     else if (arg == "--count")
-      o.count = samples::parseUint(arg, value(), 1, 65536);
+      o.count = samples::parseUint(arg, args.value(), 1, 65536);
     else if (arg == "--k")
-      o.kernelScale = samples::parseFloat(arg, kText = value(), 1.0f, 65536.0f);
+      o.kernelScale = samples::parseFloat(arg, kText = args.value(), 1.0f, 65536.0f);
     else if (arg == "--frames")
-      o.frames = samples::parseUint(arg, value(), 1, 100);
+      o.frames = samples::parseUint(arg, args.value(), 1, 100);
     else if (arg == "--pdf")
-      o.brsm = samples::parseChoice<bool>(arg, value(), {{"brsm", true}, {"flux", false}});
+      o.brsm = samples::parseChoice<bool>(arg, args.value(), {{"brsm", true}, {"flux", false}});
     else if (arg == "--importance")
-      o.brsmSettings.importanceCount = samples::parseUint(arg, value(), 1, 65536);
+      o.brsmSettings.importanceCount = samples::parseUint(arg, args.value(), 1, 65536);
     else if (arg == "--brsm-grid")
-      o.brsmSettings.gridSize = samples::parseUint(arg, value(), 1, 2048);
+      o.brsmSettings.gridSize = samples::parseUint(arg, args.value(), 1, 2048);
     else if (arg == "--flux-mix")
-      o.brsmSettings.fluxMix = samples::parseFloat(arg, value(), 1e-6f, 1.0f);
+      o.brsmSettings.fluxMix = samples::parseFloat(arg, args.value(), 1e-6f, 1.0f);
     else if (arg == "--width")
-      o.width = samples::parseUint(arg, value(), 16, 4096);
+      o.width = samples::parseUint(arg, args.value(), 16, 4096);
     else if (arg == "--height")
-      o.height = samples::parseUint(arg, value(), 16, 4096);
+      o.height = samples::parseUint(arg, args.value(), 16, 4096);
     else if (arg == "--device")
-      o.device = value();
+      o.device = args.value();
     else if (arg == "--validation")
       o.validation = true;
     else if (arg == "--help" || arg == "-h")

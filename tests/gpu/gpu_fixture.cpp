@@ -1,6 +1,10 @@
 #include "gpu_fixture.h"
 
+#include <cstring>
+
+#include "engine/commands.h"
 #include "engine/rasterizer.h"
+#include "engine/scene_gpu.h"
 
 namespace testing_gpu {
 namespace {
@@ -59,6 +63,34 @@ engine::GBuffer GpuTest::renderGBuffer(const engine::SceneGpu& scene, const engi
     resolve.record(cmd, scene, visibility, view, gbuffer);
   });
   return gbuffer;
+}
+
+DirectFrame GpuTest::renderDirect(const engine::Scene& scene, const engine::View& view,
+                                  const engine::DirectLightSettings& settings) {
+  engine::SceneGpu gpuScene = engine::uploadScene(ctx(), scene);
+  engine::Rasterizer rasterizer(ctx());
+  engine::GBufferResolve resolve(ctx());
+  engine::DirectLighting direct(ctx(), scene, settings);
+  engine::GBuffer g = engine::createGBuffer(ctx(), view.width, view.height);
+  engine::Buffer visibility(ctx(), engine::Rasterizer::visibilityBytes(view.width, view.height),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
+  engine::ImageDesc desc;
+  desc.width = view.width;
+  desc.height = view.height;
+  desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  engine::Image radiance(ctx(), desc);
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    engine::imageBarrier(cmd, radiance, VK_IMAGE_LAYOUT_GENERAL);
+    rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, view.width, view.height});
+    resolve.record(cmd, gpuScene, visibility, view, g);
+    direct.record(cmd, gpuScene, rasterizer, g, view, radiance);
+  });
+  DirectFrame out;
+  out.gbuffer = engine::readbackGBuffer(ctx(), g);
+  auto bytes = radiance.readback(ctx());
+  out.radiance.resize(bytes.size() / sizeof(glm::vec4));
+  std::memcpy(out.radiance.data(), bytes.data(), bytes.size());
+  return out;
 }
 
 }  // namespace testing_gpu

@@ -8,10 +8,18 @@
 #include <memory>
 #include <string>
 
+#include "engine/direct_light.h"
 #include "engine/gbuffer.h"
+#include "engine/gbuffer_reference.h"
 #include "engine/vk_context.h"
 
 namespace testing_gpu {
+
+// A camera frame with direct light only, read back: the decoded G-buffer and the radiance.
+struct DirectFrame {
+  engine::GBufferData gbuffer;
+  std::vector<glm::vec4> radiance;  // RGBA32F, row 0 at the top
+};
 
 class GpuTest : public ::testing::Test {
  protected:
@@ -25,6 +33,9 @@ class GpuTest : public ::testing::Test {
 
   // The camera G-buffer of `scene` seen through `view`, rasterised and resolved (blocking).
   engine::GBuffer renderGBuffer(const engine::SceneGpu& scene, const engine::View& view);
+  // `scene` rasterised, resolved and lit by the direct-light pass (blocking).
+  DirectFrame renderDirect(const engine::Scene& scene, const engine::View& view,
+                           const engine::DirectLightSettings& settings);
 
  private:
   uint32_t messagesBefore_ = 0;

@@ -41,39 +41,13 @@ constexpr double kOfImageMax = 1e-6;
 // image here; a much larger share would mean the shadow comparison tests little.
 constexpr double kMaxAmbiguousFraction = 0.03;
 
-struct GpuFrame {
-  engine::GBufferData gbuffer;
-  std::vector<glm::vec4> radiance;
-};
+using GpuFrame = testing_gpu::DirectFrame;
 
 class DirectLightTest : public testing_gpu::GpuTest {
  protected:
   GpuFrame render(const Scene& scene, const engine::View& view,
                   const engine::DirectLightSettings& settings) {
-    engine::SceneGpu gpuScene = engine::uploadScene(ctx(), scene);
-    engine::Rasterizer rasterizer(ctx());
-    engine::GBufferResolve resolve(ctx());
-    engine::DirectLighting direct(ctx(), scene, settings);
-    engine::GBuffer g = engine::createGBuffer(ctx(), view.width, view.height);
-    engine::Buffer visibility(ctx(), engine::Rasterizer::visibilityBytes(view.width, view.height),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
-    engine::ImageDesc desc;
-    desc.width = view.width;
-    desc.height = view.height;
-    desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    engine::Image radiance(ctx(), desc);
-    ctx().submitAndWait([&](VkCommandBuffer cmd) {
-      engine::imageBarrier(cmd, radiance, VK_IMAGE_LAYOUT_GENERAL);
-      rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, view.width, view.height});
-      resolve.record(cmd, gpuScene, visibility, view, g);
-      direct.record(cmd, gpuScene, rasterizer, g, view, radiance);
-    });
-    GpuFrame out;
-    out.gbuffer = engine::readbackGBuffer(ctx(), g);
-    auto bytes = radiance.readback(ctx());
-    out.radiance.resize(bytes.size() / sizeof(glm::vec4));
-    std::memcpy(out.radiance.data(), bytes.data(), bytes.size());
-    return out;
+    return renderDirect(scene, view, settings);
   }
 
   // The CPU reference of a frame the GPU rendered, from the GPU's decoded G-buffer.

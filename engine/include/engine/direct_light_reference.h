@@ -36,6 +36,17 @@ struct DirectLightReference {
   std::vector<uint8_t> ambiguous;    // 1 where the shadow result is undecidable in fp32
 };
 
+// What a light delivers at point p, without visibility: the unit direction to the light, its
+// distance (0 for a directional light, which has none) and the irradiance on a surface facing
+// it (W/m^2; times n . l for any other surface). Inverse-square falloff with
+// KHR_lights_punctual's range window and smooth spot cone, as direct_light.comp.
+struct LightIncidence {
+  glm::dvec3 toLight{0.0};
+  double distance = 0.0;
+  glm::dvec3 irradiance{0.0};
+};
+LightIncidence lightIncidence(const gpu::GpuLight& light, glm::dvec3 p);
+
 // The shadow maps of every view in `setup`, rendered by rasterizeReference and laid out as the
 // GPU's buffer: resolution^2 visibility texels per view, views back to back.
 std::vector<uint64_t> shadowMapsReference(const Scene& scene, const LightSetup& setup,

@@ -60,6 +60,21 @@ GBufferData decodeGBuffer(uint32_t width, uint32_t height, std::span<const std::
 // Reads the four images back (blocking) and decodes them.
 GBufferData readbackGBuffer(Context& ctx, GBuffer& gbuffer);
 
+// The camera ray through `pixel` (pixel units, (0, 0) the top-left corner of the image) as
+// camera_ray.glsl builds it: from the near plane through the depth-0.5 point, unit direction.
+struct CameraRay {
+  glm::dvec3 origin;
+  glm::dvec3 dir;
+};
+CameraRay cameraRayReference(const View& view, glm::dvec2 pixel);
+
+// The surface of triangle `triangle` at barycentrics (u, v) (weights of its vertices 1 and 2)
+// seen along `rayDir`, as the resolve decodes it: interpolated normal flipped to face the ray's
+// origin by the geometric normal, material factors times bilinear textures. depth is 0 (not a
+// background sample). The CPU references (path tracer, VPL gather) shade their hits with it.
+GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 barycentrics,
+                        glm::dvec3 rayDir);
+
 // sRGB transfer function inverse (IEC 61966-2-1), encoded [0, 1] -> linear, in double.
 double srgbToLinear(double encoded);
 

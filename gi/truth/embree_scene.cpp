@@ -1,0 +1,102 @@
+#include "embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/error.h"
+
+namespace truth {
+
+struct EmbreeScene::Handles {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+};
+
+EmbreeScene::EmbreeScene(const engine::Scene& scene) : handles_(std::make_unique<Handles>()) {
+  if (scene.triangleCount() == 0) throw engine::Error("Embree: the scene has no triangles");
+  handles_->device = rtcNewDevice(nullptr);
+  if (!handles_->device)
+    throw engine::Error("Embree: cannot create a device (error " +
+                        std::to_string(rtcGetDeviceError(nullptr)) + ")");
+  handles_->scene = rtcNewScene(handles_->device);
+  // Robust traversal: rays through shared edges and vertices of the closed built-in scenes must
+  // not slip between triangles (a leak would light a closed box from outside).
+  rtcSetSceneFlags(handles_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(handles_->scene, RTC_BUILD_QUALITY_HIGH);
+
+  RTCGeometry geometry = rtcNewGeometry(handles_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               scene.positions.size()));
+  for (size_t i = 0; i < scene.positions.size(); ++i)
+    for (int k = 0; k < 3; ++k) vertices[3 * i + k] = scene.positions[i][k];
+  auto* indices = static_cast<uint32_t*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(uint32_t), scene.triangleCount()));
+  std::copy(scene.indices.begin(), scene.indices.end(), indices);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(handles_->scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(handles_->scene);
+  if (RTCError e = rtcGetDeviceError(handles_->device); e != RTC_ERROR_NONE)
+    throw engine::Error("Embree: building the scene failed (error " + std::to_string(e) + ")");
+}
+
+EmbreeScene::~EmbreeScene() {
+  if (handles_->scene) rtcReleaseScene(handles_->scene);
+  if (handles_->device) rtcReleaseDevice(handles_->device);
+}
+
+namespace {
+
+RTCRay makeRay(glm::dvec3 origin, glm::dvec3 dir, double tnear, double tfar) {
+  RTCRay ray{};
+  ray.org_x = static_cast<float>(origin.x);
+  ray.org_y = static_cast<float>(origin.y);
+  ray.org_z = static_cast<float>(origin.z);
+  ray.dir_x = static_cast<float>(dir.x);
+  ray.dir_y = static_cast<float>(dir.y);
+  ray.dir_z = static_cast<float>(dir.z);
+  ray.tnear = static_cast<float>(tnear);
+  ray.tfar = std::isinf(tfar) ? std::numeric_limits<float>::infinity() : static_cast<float>(tfar);
+  ray.mask = ~0u;
+  return ray;
+}
+
+}  // namespace
+
+RayHit EmbreeScene::intersect(glm::dvec3 origin, glm::dvec3 dir, double tnear, double tfar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rayHit{};
+  rayHit.ray = makeRay(origin, dir, tnear, tfar);
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(handles_->scene, &context, &rayHit);
+  RayHit r;
+  if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return r;
+  r.hit = true;
+  r.t = rayHit.ray.tfar;
+  r.triangle = rayHit.hit.primID;
+  r.barycentrics = glm::dvec2(rayHit.hit.u, rayHit.hit.v);
+  return r;
+}
+
+bool EmbreeScene::occluded(glm::dvec3 origin, glm::dvec3 dir, double tnear, double tfar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray = makeRay(origin, dir, tnear, tfar);
+  rtcOccluded1(handles_->scene, &context, &ray);
+  // Embree marks an occluded ray by setting tfar to -inf.
+  return ray.tfar < 0.0f;
+}
+
+glm::dvec3 offsetOrigin(glm::dvec3 p, glm::dvec3 ng) {
+  const double scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), 1.0});
+  return p + ng * (scale * 0x1p-16);
+}
+
+}  // namespace truth

@@ -1,0 +1,477 @@
+#include "path_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <thread>
+
+#include "engine/brdf_reference.h"
+#include "engine/direct_light.h"
+#include "engine/direct_light_reference.h"
+#include "engine/error.h"
+#include "engine/gbuffer_reference.h"
+#include "reference/rsm_reference.h"
+
+namespace truth {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// PCG32 (O'Neill 2014, "PCG: A Family of Simple Fast Space-Efficient Statistically Good
+// Algorithms for Random Number Generation"), XSH RR output; one stream per pixel.
+class Pcg32 {
+ public:
+  Pcg32(uint64_t seed, uint64_t stream) : inc_((stream << 1u) | 1u) {
+    next();
+    state_ += seed;
+    next();
+  }
+  uint32_t next() {
+    const uint64_t old = state_;
+    state_ = old * 6364136223846793005ull + inc_;
+    const auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+    const auto rot = static_cast<uint32_t>(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+  }
+  double uniform() { return next() * 0x1p-32; }  // [0, 1)
+
+ private:
+  uint64_t state_ = 0;
+  uint64_t inc_;
+};
+
+// An orthonormal frame around unit n (Duff et al. 2017, "Building an Orthonormal Basis,
+// Revisited").
+struct Frame {
+  glm::dvec3 t, b, n;
+  explicit Frame(glm::dvec3 normal) : n(normal) {
+    const double s = n.z >= 0.0 ? 1.0 : -1.0;
+    const double a = -1.0 / (s + n.z);
+    const double c = n.x * n.y * a;
+    t = glm::dvec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    b = glm::dvec3(c, s + n.y * n.y * a, -n.y);
+  }
+  glm::dvec3 toLocal(glm::dvec3 w) const {
+    return {glm::dot(w, t), glm::dot(w, b), glm::dot(w, n)};
+  }
+  glm::dvec3 toWorld(glm::dvec3 w) const { return w.x * t + w.y * b + w.z * n; }
+};
+
+// The GGX alpha and n . v floors of brdf.glsl (engine/brdf_reference.h).
+double ggxAlpha(double roughness) {
+  return std::max(roughness * roughness, engine::kMinAlpha);
+}
+
+// Heitz 2018, Listing 1: a visible normal of the GGX with roughness alpha for the local view v.
+glm::dvec3 sampleVisibleNormal(glm::dvec3 v, double alpha, double u1, double u2) {
+  const glm::dvec3 vh = glm::normalize(glm::dvec3(alpha * v.x, alpha * v.y, v.z));
+  const double lensq = vh.x * vh.x + vh.y * vh.y;
+  const glm::dvec3 t1 =
+      lensq > 0.0 ? glm::dvec3(-vh.y, vh.x, 0.0) / std::sqrt(lensq) : glm::dvec3(1.0, 0.0, 0.0);
+  const glm::dvec3 t2 = glm::cross(vh, t1);
+  const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+  const double p1 = r * std::cos(phi);
+  const double s = 0.5 * (1.0 + vh.z);
+  const double p2 = (1.0 - s) * std::sqrt(std::max(1.0 - p1 * p1, 0.0)) + s * r * std::sin(phi);
+  const glm::dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(1.0 - p1 * p1 - p2 * p2, 0.0)) * vh;
+  return glm::normalize(glm::dvec3(alpha * nh.x, alpha * nh.y, std::max(nh.z, 0.0)));
+}
+
+// pdf of the reflected direction l when h is a visible normal: G1(v) D(h) / (4 n.v)
+// (Heitz 2018, Eq. 3 and the reflection Jacobian 1 / (4 v.h)).
+double visibleNormalReflectionPdf(glm::dvec3 v, glm::dvec3 l, double alpha) {
+  const double a2 = alpha * alpha;
+  const glm::dvec3 h = glm::normalize(v + l);
+  const double nv = v.z;
+  const double g1 = 2.0 * nv / (nv + std::sqrt(a2 + (1.0 - a2) * nv * nv));
+  return g1 * engine::ggxD(h.z, a2) / (4.0 * nv);
+}
+
+double luminance(glm::dvec3 c) {
+  return gi::luminance709(c);
+}
+
+// A ray's hit as a shading point: the surface as the resolve decodes it, and the geometric
+// normal on the side the ray came from. Embree reports fp32 barycentrics; on the large
+// triangles of a floor they place the point millimetres off, so the hit is recomputed in double
+// as the ray's intersection with the triangle's plane (Moller and Trumbore 1997).
+struct ShadingPoint {
+  glm::dvec3 position;
+  glm::dvec3 geometricNormal;
+  engine::GBufferSample surface;
+};
+
+ShadingPoint shadingPoint(const engine::Scene& scene, const RayHit& hit, glm::dvec3 origin,
+                          glm::dvec3 rayDir) {
+  glm::dvec3 p[3];
+  for (int k = 0; k < 3; ++k) p[k] = scene.positions[scene.indices[3 * size_t{hit.triangle} + k]];
+  const glm::dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+  const glm::dvec3 q = glm::cross(rayDir, e2);
+  const double det = glm::dot(e1, q);
+  glm::dvec2 bc = hit.barycentrics;
+  if (std::abs(det) > 0.0) {
+    const glm::dvec3 o = origin - p[0];
+    bc = glm::dvec2(glm::dot(o, q), glm::dot(rayDir, glm::cross(o, e1))) / det;
+  }
+  ShadingPoint s;
+  s.position = p[0] + bc.x * e1 + bc.y * e2;
+  s.geometricNormal = glm::normalize(glm::cross(e1, e2));
+  if (glm::dot(s.geometricNormal, rayDir) > 0.0) s.geometricNormal = -s.geometricNormal;
+  s.surface = engine::surfaceAt(scene, hit.triangle, bc, rayDir);
+  return s;
+}
+
+// Radiance that `light` reflects at `at` towards `toViewer`, with an exact shadow ray; each
+// lobe apart (Lambert, GGX).
+struct Reflected {
+  glm::dvec3 diffuse{0.0};
+  glm::dvec3 glossy{0.0};
+};
+
+Reflected reflectLight(const EmbreeScene& rays, const gpu::GpuLight& light, const ShadingPoint& at,
+                       glm::dvec3 toViewer, bool shadowRay = true) {
+  const engine::LightIncidence incidence = engine::lightIncidence(light, at.position);
+  const glm::dvec3 l = incidence.toLight;
+  const double nl = glm::dot(at.surface.normal, l);
+  if (nl <= 0.0 || incidence.irradiance == glm::dvec3(0.0)) return {};
+  // A light behind the triangle itself is shadowed by it, whatever the shading normal says.
+  if (shadowRay && glm::dot(at.geometricNormal, l) <= 0.0) return {};
+  const double tfar = incidence.distance > 0.0 ? incidence.distance * (1.0 - 1e-6)
+                                               : std::numeric_limits<double>::infinity();
+  if (shadowRay && rays.occluded(offsetOrigin(at.position, at.geometricNormal), l, 0.0, tfar))
+    return {};
+  const engine::GBufferSample& s = at.surface;
+  Reflected r;
+  r.diffuse = s.diffuse / kPi * nl * incidence.irradiance;
+  r.glossy =
+      engine::ggxSpecular(s.normal, toViewer, l, s.f0, s.roughness) * nl * incidence.irradiance;
+  return r;
+}
+
+// Per-pixel running sums of the indirect estimate.
+struct PixelState {
+  bool background = true;
+  ShadingPoint x{};
+  glm::dvec3 view{0.0};
+  glm::dvec3 direct{0.0};
+  glm::dvec3 diffuseSum{0.0};
+  glm::dvec3 glossySum{0.0};
+  double luminanceSum = 0.0;
+  double luminanceSquares = 0.0;
+  uint32_t samples = 0;
+  Pcg32 rng{0, 0};  // seeded from (seed, pixel) in pass 1
+};
+
+// Where the bouncing light sends its rays for the light-sampling strategy: a spot's cone
+// (directions uniform in solid angle) or, for a directional light, a disc across the light
+// covering the scene's bounding sphere (origins uniform in area).
+struct LightSampler {
+  glm::dvec3 position{0.0};  // spot
+  glm::dvec3 axis{0.0};      // the way light travels
+  bool directional = false;
+  double cosOuter = 1.0;   // spot
+  glm::dvec3 centre{0.0};  // directional: the disc's centre, upstream of the scene
+  double radius = 0.0;     // directional
+  double pdf = 0.0;        // per steradian (spot) or per m^2 across the beam (directional)
+
+  LightSampler(const engine::Light& light, const engine::Bounds& bounds) {
+    axis = glm::normalize(glm::dvec3(light.direction));
+    if (light.type == engine::LightType::Directional) {
+      directional = true;
+      const glm::dvec3 mid = 0.5 * (glm::dvec3(bounds.min) + glm::dvec3(bounds.max));
+      radius = 0.5 * glm::length(glm::dvec3(bounds.max) - glm::dvec3(bounds.min)) + 1e-3;
+      centre = mid - 2.0 * radius * axis;
+      pdf = 1.0 / (kPi * radius * radius);
+    } else {
+      position = glm::dvec3(light.position);
+      cosOuter = std::cos(static_cast<double>(light.outerConeAngle));
+      pdf = 1.0 / (2.0 * kPi * (1.0 - cosOuter));
+    }
+  }
+
+  // A ray leaving the light; `u1`, `u2` uniform.
+  std::pair<glm::dvec3, glm::dvec3> sample(double u1, double u2) const {
+    const Frame frame(axis);
+    const double phi = 2.0 * kPi * u2;
+    if (directional) {
+      const double r = radius * std::sqrt(u1);
+      return {centre + frame.toWorld({r * std::cos(phi), r * std::sin(phi), 0.0}), axis};
+    }
+    const double c = 1.0 - u1 * (1.0 - cosOuter);
+    const double s = std::sqrt(std::max(1.0 - c * c, 0.0));
+    return {position, frame.toWorld({s * std::cos(phi), s * std::sin(phi), c})};
+  }
+
+  // The density, per m^2 of surface, with which sample() lands first on point p whose
+  // geometric normal is ng (0 outside the cone).
+  double areaPdf(glm::dvec3 p, glm::dvec3 ng) const {
+    if (directional) return pdf * std::abs(glm::dot(ng, axis));
+    const glm::dvec3 d = p - position;
+    const double t2 = glm::dot(d, d);
+    const glm::dvec3 w = d / std::sqrt(t2);
+    if (glm::dot(w, axis) < cosOuter) return 0.0;
+    return pdf * std::abs(glm::dot(ng, w)) / t2;
+  }
+};
+
+// The one-bounce estimator at a pixel's visible point x, two strategies for the bounce point
+// y combined by the balance heuristic (Veach 1997, section 9.2): (a) a direction from x's BRDF
+// sampling, y the first hit, the light at y by a shadow ray; (b) a ray from the light, y its
+// first hit, connected to x by a visibility ray. (a) handles y close to x (corners), where
+// (b)'s 1/d^2 explodes; (b) finds a small lit area that (a) rarely hits.
+class Tracer {
+ public:
+  Tracer(const engine::Scene& scene, const EmbreeScene& rays, const gpu::GpuLight& bouncing,
+         const engine::Light& light)
+      : scene_(scene), rays_(rays), bouncing_(bouncing), lightSampler_(light, scene.bounds()) {}
+
+  void sample(PixelState& px) const {
+    const Lobes lobes(px);
+    Pcg32& rng = px.rng;
+    const double u[5] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+    Contribution c = brdfStrategy(px, lobes, u[0], u[1], u[2]);
+    const Contribution b = lightStrategy(px, lobes, u[3], u[4]);
+    c.diffuse += b.diffuse;
+    c.glossy += b.glossy;
+    px.diffuseSum += c.diffuse;
+    px.glossySum += c.glossy;
+    const double y = luminance(c.diffuse + c.glossy);
+    px.luminanceSum += y;
+    px.luminanceSquares += y * y;
+    ++px.samples;
+  }
+
+ private:
+  // x's BRDF sampling: the mixture of cosine and GGX visible-normal sampling, in x's frame.
+  struct Lobes {
+    Frame frame;
+    glm::dvec3 v;
+    double alpha;
+    double pSpecular;
+    explicit Lobes(const PixelState& px)
+        : frame(px.x.surface.normal),
+          v(frame.toLocal(px.view)),
+          alpha(ggxAlpha(px.x.surface.roughness)) {
+      // Lobe choice in proportion to the lobes' weights, kept in [0.1, 0.9] so that neither
+      // starves; cosine sampling only when the view grazes the shading normal.
+      const double dw = luminance(px.x.surface.diffuse), sw = luminance(px.x.surface.f0);
+      pSpecular = dw + sw > 0.0 ? std::clamp(sw / (dw + sw), 0.1, 0.9) : 0.5;
+      if (v.z <= engine::kMinNv) pSpecular = 0.0;
+    }
+    // Solid-angle density of a local direction l.
+    double pdf(glm::dvec3 l) const {
+      if (l.z <= 0.0) return 0.0;
+      return (pSpecular > 0.0 ? pSpecular * visibleNormalReflectionPdf(v, l, alpha) : 0.0) +
+             (1.0 - pSpecular) * l.z / kPi;
+    }
+  };
+
+  struct Contribution {
+    glm::dvec3 diffuse{0.0};
+    glm::dvec3 glossy{0.0};
+  };
+
+  // x's lobes times the radiance `incoming` from world direction `dir`, times `scale`.
+  static Contribution atX(const PixelState& px, glm::dvec3 dir, glm::dvec3 incoming, double scale) {
+    const engine::GBufferSample& s = px.x.surface;
+    const double cosine = glm::dot(s.normal, dir);
+    Contribution c;
+    if (cosine <= 0.0) return c;
+    c.diffuse = s.diffuse / kPi * cosine * incoming * scale;
+    c.glossy =
+        engine::ggxSpecular(s.normal, px.view, dir, s.f0, s.roughness) * cosine * incoming * scale;
+    return c;
+  }
+
+  Contribution brdfStrategy(const PixelState& px, const Lobes& lobes, double u0, double u1,
+                            double u2) const {
+    glm::dvec3 l;
+    if (u0 < lobes.pSpecular) {
+      const glm::dvec3 h = sampleVisibleNormal(lobes.v, lobes.alpha, u1, u2);
+      l = 2.0 * glm::dot(lobes.v, h) * h - lobes.v;
+    } else {
+      const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+      l = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(1.0 - u1, 0.0)));
+    }
+    const double pdf = lobes.pdf(l);
+    const glm::dvec3 dir = lobes.frame.toWorld(l);
+    // Directions into the receiver's own triangle would leak through it.
+    if (pdf <= 0.0 || glm::dot(px.x.geometricNormal, dir) <= 0.0) return {};
+    const RayHit hit = rays_.intersect(offsetOrigin(px.x.position, px.x.geometricNormal), dir);
+    if (!hit.hit) return {};
+    const ShadingPoint y = shadingPoint(scene_, hit, px.x.position, dir);
+    const Reflected r = reflectLight(rays_, bouncing_, y, -dir);
+    if (r.diffuse + r.glossy == glm::dvec3(0.0)) return {};
+    // Both strategies' densities of y per m^2 (x's solid angle times |cos_y| / d^2).
+    const double areaA = pdf * std::abs(glm::dot(y.geometricNormal, dir)) / (hit.t * hit.t);
+    const double areaB = lightSampler_.areaPdf(y.position, y.geometricNormal);
+    return atX(px, dir, r.diffuse + r.glossy, areaA / (areaA + areaB) / pdf);
+  }
+
+  Contribution lightStrategy(const PixelState& px, const Lobes& lobes, double u1, double u2) const {
+    const auto [origin, dir] = lightSampler_.sample(u1, u2);
+    const RayHit hit = rays_.intersect(origin, dir);
+    if (!hit.hit) return {};
+    const ShadingPoint y = shadingPoint(scene_, hit, origin, dir);  // normal faces the light
+    const glm::dvec3 toX = px.x.position - y.position;
+    const double d2 = glm::dot(toX, toX);
+    if (d2 <= 0.0) return {};
+    const double d = std::sqrt(d2);
+    const glm::dvec3 w = toX / d;  // y -> x
+    // x on y's lit side, y in front of x's own triangle, nothing in between.
+    if (glm::dot(y.geometricNormal, w) <= 0.0 || glm::dot(px.x.geometricNormal, -w) <= 0.0)
+      return {};
+    const engine::LightIncidence incidence = engine::lightIncidence(bouncing_, y.position);
+    const double nl = glm::dot(y.surface.normal, incidence.toLight);
+    if (nl <= 0.0 || incidence.irradiance == glm::dvec3(0.0)) return {};
+    const glm::dvec3 xo = offsetOrigin(px.x.position, px.x.geometricNormal);
+    if (rays_.occluded(xo, -w, 0.0, d * (1.0 - 1e-6))) return {};
+    const engine::GBufferSample& s = y.surface;
+    const glm::dvec3 radiance =
+        (s.diffuse / kPi + engine::ggxSpecular(s.normal, w, incidence.toLight, s.f0, s.roughness)) *
+        nl * incidence.irradiance;
+    const double areaB = lightSampler_.areaPdf(y.position, y.geometricNormal);
+    const double geometry = std::abs(glm::dot(y.geometricNormal, w)) / d2;
+    const double areaA = lobes.pdf(lobes.frame.toLocal(-w)) * geometry;
+    if (areaB <= 0.0) return {};
+    return atX(px, -w, radiance, geometry / (areaA + areaB));
+  }
+
+  const engine::Scene& scene_;
+  const EmbreeScene& rays_;
+  const gpu::GpuLight& bouncing_;
+  LightSampler lightSampler_;
+};
+
+double standardError(const PixelState& px) {
+  if (px.samples < 2) return std::numeric_limits<double>::infinity();
+  const double n = px.samples;
+  const double variance =
+      std::max(px.luminanceSquares - px.luminanceSum * px.luminanceSum / n, 0.0) / (n - 1.0);
+  return std::sqrt(variance / n);
+}
+
+// Runs `work(pixel)` over every pixel on `threads` threads, pixels handed out in chunks.
+template <class Work>
+void forEachPixel(size_t pixels, unsigned threads, Work work) {
+  std::atomic<size_t> next{0};
+  constexpr size_t kChunk = 16;
+  auto worker = [&] {
+    for (size_t first; (first = next.fetch_add(kChunk)) < pixels;)
+      for (size_t i = first; i < std::min(first + kChunk, pixels); ++i) work(i);
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+}  // namespace
+
+PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
+                         const engine::View& view, uint32_t bouncingLight,
+                         const PathTraceSettings& settings) {
+  if (bouncingLight >= scene.lights.size())
+    throw engine::Error("pathTrace: light " + std::to_string(bouncingLight) + " of " +
+                        std::to_string(scene.lights.size()));
+  const auto start = std::chrono::steady_clock::now();
+  engine::DirectLightSettings lightSettings;
+  lightSettings.shadows = false;  // exact shadow rays instead of maps
+  const std::vector<gpu::GpuLight> lights = engine::buildLightSetup(scene, lightSettings).lights;
+  const Tracer tracer(scene, rays, lights[bouncingLight], scene.lights[bouncingLight]);
+  const unsigned threads =
+      settings.threads > 0 ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+  const size_t pixels = size_t{view.width} * view.height;
+  std::vector<PixelState> state(pixels);
+
+  auto run = [&](PixelState& px, uint32_t count) {
+    for (uint32_t k = 0; k < count; ++k) tracer.sample(px);
+  };
+
+  // Pass 1: the visible point, the direct light, minSamples of the indirect light.
+  forEachPixel(pixels, threads, [&](size_t i) {
+    PixelState& px = state[i];
+    const auto x = static_cast<uint32_t>(i % view.width), y = static_cast<uint32_t>(i / view.width);
+    const engine::CameraRay ray = engine::cameraRayReference(view, glm::dvec2(x + 0.5, y + 0.5));
+    const RayHit hit = rays.intersect(ray.origin, ray.dir);
+    if (!hit.hit) return;
+    px.background = false;
+    px.x = shadingPoint(scene, hit, ray.origin, ray.dir);
+    px.view = -ray.dir;
+    for (const gpu::GpuLight& light : lights) {
+      const Reflected r = reflectLight(rays, light, px.x, px.view, settings.directShadows);
+      px.direct += r.diffuse + r.glossy;
+    }
+    px.rng = Pcg32(settings.seed, i);
+    run(px, settings.minSamples);
+  });
+
+  double luminanceTotal = 0.0;
+  size_t foreground = 0;
+  for (const PixelState& px : state)
+    if (!px.background) {
+      luminanceTotal += px.luminanceSum / px.samples;
+      ++foreground;
+    }
+  PathTraceImage image;
+  image.noiseFloor = foreground > 0 ? settings.relativeError * settings.floorFraction *
+                                          luminanceTotal / static_cast<double>(foreground)
+                                    : 0.0;
+
+  // Pass 2: batches until each pixel meets its target.
+  auto target = [&](const PixelState& px) {
+    return std::max(settings.relativeError * px.luminanceSum / px.samples, image.noiseFloor);
+  };
+  std::atomic<size_t> done{0};
+  std::atomic<bool> finished{false};
+  std::thread reporter;
+  if (settings.progress)
+    reporter = std::thread([&] {
+      auto last = std::chrono::steady_clock::now();
+      while (!finished) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        if (std::chrono::steady_clock::now() - last < std::chrono::seconds(5)) continue;
+        last = std::chrono::steady_clock::now();
+        std::fprintf(stderr, "path tracer: %.1f %% of pixels at their noise target\n",
+                     100.0 * static_cast<double>(done) / static_cast<double>(pixels));
+      }
+    });
+  std::atomic<uint32_t> unconverged{0};
+  forEachPixel(pixels, threads, [&](size_t i) {
+    PixelState& px = state[i];
+    if (!px.background) {
+      while (px.samples < settings.maxSamples && standardError(px) > target(px))
+        run(px, std::min(settings.batch, settings.maxSamples - px.samples));
+      if (standardError(px) > target(px)) ++unconverged;
+    }
+    ++done;
+  });
+  finished = true;
+  if (reporter.joinable()) reporter.join();
+
+  image.width = view.width;
+  image.height = view.height;
+  image.direct.resize(pixels);
+  image.diffuse.resize(pixels);
+  image.glossy.resize(pixels);
+  image.standardError.resize(pixels);
+  image.samples.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    const PixelState& px = state[i];
+    if (px.background) continue;
+    image.direct[i] = px.direct;
+    image.diffuse[i] = px.diffuseSum / double(px.samples);
+    image.glossy[i] = px.glossySum / double(px.samples);
+    image.standardError[i] = standardError(px);
+    image.samples[i] = px.samples;
+  }
+  image.unconverged = unconverged;
+  image.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+}  // namespace truth

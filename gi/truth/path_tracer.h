@@ -1,0 +1,63 @@
+// The one-bounce ground truth (issue 5): a CPU path tracer on Embree, independent of the RSM,
+// that renders what the VSGL module approximates, in the same units, BRDF and camera:
+//   direct:  every light, exact shadow rays;
+//   diffuse, glossy: light of ONE light (the one the RSM renders) after exactly one bounce,
+//            light -> y -> x -> camera, split by the receiver x's lobe (Lambert or GGX) as the
+//            module's two outputs are. y reflects with its full BRDF (both lobes).
+// Primary rays go through pixel centres as the G-buffer's do (one visible point per pixel, no
+// anti-aliasing), so images compare pixel by pixel with the GPU's.
+//
+// Estimator at x: directions from a one-sample mixture of cosine and GGX visible-normal
+// sampling (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"), weighted by the
+// mixture pdf (the balance heuristic of Veach 1997, section 9.2.2); the light at y is a point or
+// direction, evaluated exactly with a shadow ray. Each pixel has its own PCG32 stream seeded from
+// (seed, pixel), so the image does not depend on the thread count or scheduling.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "embree_scene.h"
+#include "engine/scene.h"
+#include "engine/view.h"
+
+namespace truth {
+
+// When a pixel stops: its standard error of the indirect luminance (Rec. 709) falls to
+// relativeError of its mean, or to relativeError x floorFraction of the image's mean indirect
+// luminance (from the first minSamples of every pixel), whichever is larger; or at maxSamples.
+struct PathTraceSettings {
+  double relativeError = 0.01;
+  double floorFraction = 0.1;
+  uint32_t minSamples = 64;
+  uint32_t maxSamples = 1u << 16;
+  uint32_t batch = 64;  // samples between two convergence checks
+  uint64_t seed = 1;
+  unsigned threads = 0;   // 0: std::thread::hardware_concurrency()
+  bool progress = false;  // progress lines on stderr
+  // Off: the direct light ignores occluders (to compare with a renderer's unshadowed mode; the
+  // one-bounce light always traces its shadow rays).
+  bool directShadows = true;
+};
+
+struct PathTraceImage {
+  uint32_t width = 0;
+  uint32_t height = 0;
+  // Radiance towards the camera, W sr^-1 m^-2, row 0 at the top; 0 on background pixels.
+  std::vector<glm::dvec3> direct;
+  std::vector<glm::dvec3> diffuse;
+  std::vector<glm::dvec3> glossy;
+  std::vector<double> standardError;  // of the luminance of diffuse + glossy, per pixel
+  std::vector<uint32_t> samples;      // per pixel (0 on background)
+  double noiseFloor = 0.0;            // the absolute standard-error target (see settings)
+  uint32_t unconverged = 0;           // pixels that stopped at maxSamples above their target
+  double seconds = 0.0;
+};
+
+// `bouncingLight` indexes scene.lights. Throws engine::Error on an index out of range.
+PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
+                         const engine::View& view, uint32_t bouncingLight,
+                         const PathTraceSettings& settings);
+
+}  // namespace truth

@@ -1,0 +1,45 @@
+#include "scene_files.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "engine/builtin_scenes.h"
+#include "engine/error.h"
+#include "engine/gltf.h"
+
+namespace samples {
+
+bool isBuiltinScene(const std::string& name) {
+  auto names = engine::builtinSceneNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+engine::Scene loadScene(const std::string& name) {
+  if (isBuiltinScene(name)) return engine::makeBuiltinScene(name);
+  std::filesystem::path path(name);
+  if (path.extension() != ".gltf" && path.extension() != ".glb")
+    throw engine::Error("--scene: '" + name +
+                        "' is neither a built-in scene (cornell, atrium, checker) nor a "
+                        ".gltf/.glb file");
+  return engine::loadGltf(name);
+}
+
+engine::View sceneView(const engine::Scene& scene, uint32_t width, uint32_t height) {
+  const engine::Camera camera =
+      scene.cameras.empty() ? engine::defaultCamera(scene) : scene.cameras.front();
+  return engine::cameraView(camera, width, height);
+}
+
+void createOutputDirectory(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw engine::Error(dir + ": cannot create output directory: " + ec.message());
+}
+
+void writePair(const std::string& base, const engine::ImageRgba32f& image,
+               const engine::ToneMapSettings& toneMap) {
+  engine::writeExr(base + ".exr", image);
+  engine::writePng(base + ".png", image.width, image.height, engine::toneMap(image, toneMap));
+}
+
+}  // namespace samples

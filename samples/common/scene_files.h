@@ -1,0 +1,26 @@
+// What the sample programs share about scenes and pictures: the --scene argument (a built-in
+// scene's name or a glTF file), the output directory, and the EXR + PNG pair written for every
+// picture.
+#pragma once
+
+#include <string>
+
+#include "engine/image_io.h"
+#include "engine/scene.h"
+#include "engine/tonemap.h"
+#include "engine/view.h"
+
+namespace samples {
+
+bool isBuiltinScene(const std::string& name);
+// Throws engine::Error("--scene: ...") for anything that is neither.
+engine::Scene loadScene(const std::string& name);
+// The scene's first camera (or the default framing) for a width x height image.
+engine::View sceneView(const engine::Scene& scene, uint32_t width, uint32_t height);
+// Creates `dir` (and parents); throws engine::Error naming it on failure.
+void createOutputDirectory(const std::string& dir);
+// <base>.exr (linear) and <base>.png (tone-mapped sRGB).
+void writePair(const std::string& base, const engine::ImageRgba32f& image,
+               const engine::ToneMapSettings& toneMap);
+
+}  // namespace samples

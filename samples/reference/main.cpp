@@ -1,0 +1,140 @@
+// vsgl_reference: the one-bounce ground truth of a scene (gi/truth/path_tracer.h), rendered on
+// the CPU with Embree for the camera and light the sample renderer uses, written as linear EXRs
+// (direct, indirect = diffuse + glossy, each lobe apart, and the per-pixel standard error) and a
+// tone-mapped PNG of direct + indirect.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string_view>
+
+#include "cli_values.h"
+#include "embree_scene.h"
+#include "engine/error.h"
+#include "path_tracer.h"
+#include "program_exit.h"
+#include "scene_files.h"
+
+namespace {
+
+struct Options {
+  std::string scene = "cornell";
+  std::string outDir = "out";
+  uint32_t width = 640;
+  uint32_t height = 360;
+  truth::PathTraceSettings trace;
+  bool help = false;
+};
+
+const char* usage() {
+  return "usage: vsgl_reference [options]\n"
+         "  --scene NAME|FILE    built-in scene (cornell, atrium, checker) or .gltf/.glb (default "
+         "cornell)\n"
+         "  --out DIR            output directory (default out)\n"
+         "  --width N --height N image size in pixels, 1..8192 (default 640x360)\n"
+         "  --noise R            stop a pixel when its standard error is R of its value,\n"
+         "                       0.001..0.5 (default 0.01), or R/10 of the image's mean\n"
+         "  --max-samples N      per pixel, 16..1048576 (default 65536)\n"
+         "  --threads N          0 = every core (default 0)\n"
+         "  --seed N             random seed (default 1)\n";
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  o.trace.progress = true;
+  for (samples::Arguments args(argc, argv); args.next();) {
+    const std::string_view arg = args.option();
+    if (arg == "--scene")
+      o.scene = args.value();
+    else if (arg == "--out")
+      o.outDir = args.value();
+    else if (arg == "--width")
+      o.width = samples::parseUint(arg, args.value(), 1, 8192);
+    else if (arg == "--height")
+      o.height = samples::parseUint(arg, args.value(), 1, 8192);
+    else if (arg == "--noise")
+      o.trace.relativeError = samples::parseFloat(arg, args.value(), 0.001f, 0.5f);
+    else if (arg == "--max-samples")
+      o.trace.maxSamples = samples::parseUint(arg, args.value(), 16, 1u << 20);
+    else if (arg == "--threads")
+      o.trace.threads = samples::parseUint(arg, args.value(), 0, 1024);
+    else if (arg == "--seed")
+      o.trace.seed = samples::parseUint(arg, args.value(), 0, 0xFFFFFFFFu);
+    else if (arg == "--help" || arg == "-h")
+      o.help = true;
+    else
+      throw engine::Error(std::string(arg) + ": unknown option (see --help)");
+  }
+  o.trace.minSamples = std::min(o.trace.minSamples, o.trace.maxSamples);
+  return o;
+}
+
+// The light the RSM renders (the sample renderer's choice): the first spot or directional one.
+uint32_t bouncingLight(const engine::Scene& scene) {
+  for (uint32_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].type != engine::LightType::Point) return i;
+  throw engine::Error("--scene: '" + scene.source + "' has no spot or directional light to bounce");
+}
+
+engine::ImageRgba32f toImage(uint32_t width, uint32_t height, auto value) {
+  engine::ImageRgba32f image{int(width), int(height), {}};
+  image.pixels.reserve(size_t{width} * height * 4);
+  for (size_t i = 0; i < size_t{width} * height; ++i) {
+    const glm::dvec3 v = value(i);
+    for (int k = 0; k < 3; ++k) image.pixels.push_back(static_cast<float>(v[k]));
+    image.pixels.push_back(1.0f);
+  }
+  return image;
+}
+
+int run(const Options& o) {
+  if (o.help) {
+    std::printf("%s", usage());
+    return 0;
+  }
+  const engine::Scene scene = samples::loadScene(o.scene);
+  const uint32_t light = bouncingLight(scene);
+  const engine::View view = samples::sceneView(scene, o.width, o.height);
+  samples::createOutputDirectory(o.outDir);
+  std::printf("scene: %s, %u triangles, %ux%u, light %u bounces, noise target %.3g\n",
+              scene.source.c_str(), scene.triangleCount(), o.width, o.height, light,
+              o.trace.relativeError);
+  const truth::EmbreeScene rays(scene);
+  const truth::PathTraceImage r = truth::pathTrace(scene, rays, view, light, o.trace);
+
+  uint64_t samples = 0, pixels = 0;
+  for (uint32_t n : r.samples)
+    if (n > 0) {
+      samples += n;
+      ++pixels;
+    }
+  std::printf(
+      "traced %.1f s: %.0f samples per pixel on average, %u of %llu pixels above their "
+      "target at %u samples, noise floor %.3g W/(sr m^2)\n",
+      r.seconds, pixels ? double(samples) / double(pixels) : 0.0, r.unconverged,
+      static_cast<unsigned long long>(pixels), o.trace.maxSamples, r.noiseFloor);
+
+  const std::string base =
+      (std::filesystem::path(o.outDir) / std::filesystem::path(o.scene).stem()).string() +
+      "_reference";
+  const uint32_t w = r.width, h = r.height;
+  const engine::ToneMapSettings toneMap{};
+  samples::writePair(
+      base, toImage(w, h, [&](size_t i) { return r.direct[i] + r.diffuse[i] + r.glossy[i]; }),
+      toneMap);
+  engine::writeExr(base + "_direct.exr", toImage(w, h, [&](size_t i) { return r.direct[i]; }));
+  engine::writeExr(base + "_indirect.exr",
+                   toImage(w, h, [&](size_t i) { return r.diffuse[i] + r.glossy[i]; }));
+  engine::writeExr(base + "_diffuse.exr", toImage(w, h, [&](size_t i) { return r.diffuse[i]; }));
+  engine::writeExr(base + "_glossy.exr", toImage(w, h, [&](size_t i) { return r.glossy[i]; }));
+  engine::writeExr(base + "_stderr.exr",
+                   toImage(w, h, [&](size_t i) { return glm::dvec3(r.standardError[i]); }));
+  std::printf("wrote %s.{exr,png}, _direct, _indirect, _diffuse, _glossy, _stderr .exr\n",
+              base.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return samples::guardedMain("vsgl_reference", [&] { return run(parseOptions(argc, argv)); });
+}
