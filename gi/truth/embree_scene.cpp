@@ -94,6 +94,12 @@ bool EmbreeScene::occluded(glm::dvec3 origin, glm::dvec3 dir, double tnear, doub
   return ray.tfar < 0.0f;
 }
 
+bool EmbreeScene::visible(glm::dvec3 from, glm::dvec3 to) const {
+  const glm::dvec3 d = to - from;
+  const double length = glm::length(d);
+  return length <= 0.0 || !occluded(from, d / length, 0.0, length);
+}
+
 glm::dvec3 offsetOrigin(glm::dvec3 p, glm::dvec3 ng) {
   const double scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), 1.0});
   return p + ng * (scale * 0x1p-16);

@@ -33,6 +33,9 @@ class EmbreeScene {
                    double tfar = std::numeric_limits<double>::infinity()) const;
   // Whether anything lies on the segment origin + t dir, t in [tnear, tfar].
   bool occluded(glm::dvec3 origin, glm::dvec3 dir, double tnear, double tfar) const;
+  // Whether the segment between two points (both already offset off their surfaces with
+  // offsetOrigin) is free of geometry.
+  bool visible(glm::dvec3 from, glm::dvec3 to) const;
 
  private:
   struct Handles;

@@ -21,18 +21,19 @@
 #include "embree_scene.h"
 #include "engine/scene.h"
 #include "engine/view.h"
+#include "reference_cache.h"
 
 namespace truth {
 
-// When a pixel stops: its standard error of the indirect luminance (Rec. 709) falls to
-// relativeError of its mean, or to relativeError x floorFraction of the image's mean indirect
-// luminance (from the first minSamples of every pixel), whichever is larger; or at maxSamples.
+// How many samples a pixel gets: enough, by a pilot of minSamples (then discarded), for the
+// standard error of its indirect luminance (Rec. 709) to reach relativeError of its mean, or
+// relativeError x floorFraction of the image's mean indirect luminance, whichever is larger;
+// within [minSamples, maxSamples].
 struct PathTraceSettings {
   double relativeError = 0.01;
   double floorFraction = 0.1;
-  uint32_t minSamples = 64;
+  uint32_t minSamples = 256;
   uint32_t maxSamples = 1u << 16;
-  uint32_t batch = 64;  // samples between two convergence checks
   uint64_t seed = 1;
   unsigned threads = 0;   // 0: std::thread::hardware_concurrency()
   bool progress = false;  // progress lines on stderr
@@ -51,7 +52,7 @@ struct PathTraceImage {
   std::vector<double> standardError;  // of the luminance of diffuse + glossy, per pixel
   std::vector<uint32_t> samples;      // per pixel (0 on background)
   double noiseFloor = 0.0;            // the absolute standard-error target (see settings)
-  uint32_t unconverged = 0;           // pixels that stopped at maxSamples above their target
+  uint32_t unconverged = 0;           // pixels whose final standard error misses the target
   double seconds = 0.0;
 };
 
@@ -59,5 +60,12 @@ struct PathTraceImage {
 PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
                          const engine::View& view, uint32_t bouncingLight,
                          const PathTraceSettings& settings);
+
+// pathTrace through `cache`: the stored image when one exists for these inputs (scene content,
+// view, light, settings except threads and progress), else rendered and stored. `fromCache`
+// says which. The EmbreeScene is built only when rendering.
+PathTraceImage cachedPathTrace(const ReferenceCache& cache, const engine::Scene& scene,
+                               const engine::View& view, uint32_t bouncingLight,
+                               const PathTraceSettings& settings, bool* fromCache = nullptr);
 
 }  // namespace truth

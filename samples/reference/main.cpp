@@ -10,9 +10,11 @@
 #include "cli_values.h"
 #include "embree_scene.h"
 #include "engine/error.h"
+#include "engine/image_metrics.h"
 #include "path_tracer.h"
 #include "program_exit.h"
 #include "scene_files.h"
+#include "vpl_gather.h"
 
 namespace {
 
@@ -22,6 +24,10 @@ struct Options {
   uint32_t width = 640;
   uint32_t height = 360;
   truth::PathTraceSettings trace;
+  std::string cacheDir;  // "" = <out>/cache
+  bool cache = true;
+  uint32_t vplRsm = 0;  // 0 = no VPL gather
+  std::string compare;  // an image to score against the reference's indirect light
   bool help = false;
 };
 
@@ -35,7 +41,12 @@ const char* usage() {
          "                       0.001..0.5 (default 0.01), or R/10 of the image's mean\n"
          "  --max-samples N      per pixel, 16..1048576 (default 65536)\n"
          "  --threads N          0 = every core (default 0)\n"
-         "  --seed N             random seed (default 1)\n";
+         "  --seed N             random seed (default 1)\n"
+         "  --cache DIR          reference cache (default <out>/cache); --no-cache renders anew\n"
+         "  --vpl N              also gather every texel of an N^2 RSM as a VPL, 16..1024,\n"
+         "                       and score it against the path tracer\n"
+         "  --compare FILE       score an indirect-light image (e.g. vsgl_render's\n"
+         "                       <scene>_indirect.exr) against the path tracer\n";
 }
 
 Options parseOptions(int argc, char** argv) {
@@ -59,6 +70,14 @@ Options parseOptions(int argc, char** argv) {
       o.trace.threads = samples::parseUint(arg, args.value(), 0, 1024);
     else if (arg == "--seed")
       o.trace.seed = samples::parseUint(arg, args.value(), 0, 0xFFFFFFFFu);
+    else if (arg == "--cache")
+      o.cacheDir = args.value();
+    else if (arg == "--no-cache")
+      o.cache = false;
+    else if (arg == "--vpl")
+      o.vplRsm = samples::parseUint(arg, args.value(), 16, 1024);
+    else if (arg == "--compare")
+      o.compare = args.value();
     else if (arg == "--help" || arg == "-h")
       o.help = true;
     else
@@ -86,6 +105,21 @@ engine::ImageRgba32f toImage(uint32_t width, uint32_t height, auto value) {
   return image;
 }
 
+// RMSE, relative MSE and PSNR of `test` against the reference's indirect light, and a
+// false-colour picture of the error (scale: the 99th percentile of the absolute error).
+void printScore(const std::string& name, const std::vector<glm::dvec3>& test,
+                const std::vector<glm::dvec3>& reference, const std::string& png, uint32_t w,
+                uint32_t h) {
+  const engine::ErrorMetrics m = engine::compareImages(test, reference);
+  const double scale = engine::percentileAbsError(test, reference, 0.99);
+  engine::writeFalseColourError(png, int(w), int(h), test, reference, scale);
+  std::printf(
+      "%s against the path tracer: RMSE %.4g (%.2f %% of the mean %.4g), relMSE %.4g, "
+      "PSNR %.2f dB%s; error picture %s (0..%.3g)\n",
+      name.c_str(), m.rmse, 100.0 * m.rmse / m.referenceMean, m.referenceMean, m.relativeMse,
+      m.psnr, m.nonFinite ? ", NON-FINITE PIXELS" : "", png.c_str(), scale);
+}
+
 int run(const Options& o) {
   if (o.help) {
     std::printf("%s", usage());
@@ -98,9 +132,15 @@ int run(const Options& o) {
   std::printf("scene: %s, %u triangles, %ux%u, light %u bounces, noise target %.3g\n",
               scene.source.c_str(), scene.triangleCount(), o.width, o.height, light,
               o.trace.relativeError);
-  const truth::EmbreeScene rays(scene);
-  const truth::PathTraceImage r = truth::pathTrace(scene, rays, view, light, o.trace);
-
+  bool fromCache = false;
+  const truth::PathTraceImage r =
+      o.cache ? truth::cachedPathTrace(
+                    truth::ReferenceCache(o.cacheDir.empty()
+                                              ? (std::filesystem::path(o.outDir) / "cache").string()
+                                              : o.cacheDir),
+                    scene, view, light, o.trace, &fromCache)
+              : truth::pathTrace(scene, truth::EmbreeScene(scene), view, light, o.trace);
+  if (fromCache) std::printf("reference from the cache (rendered in %.1f s)\n", r.seconds);
   uint64_t samples = 0, pixels = 0;
   for (uint32_t n : r.samples)
     if (n > 0) {
@@ -130,6 +170,35 @@ int run(const Options& o) {
                    toImage(w, h, [&](size_t i) { return glm::dvec3(r.standardError[i]); }));
   std::printf("wrote %s.{exr,png}, _direct, _indirect, _diffuse, _glossy, _stderr .exr\n",
               base.c_str());
+
+  std::vector<glm::dvec3> indirect(r.diffuse.size());
+  for (size_t i = 0; i < indirect.size(); ++i) indirect[i] = r.diffuse[i] + r.glossy[i];
+  if (o.vplRsm > 0) {
+    const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, light, o.vplRsm);
+    const truth::VplGatherImage g =
+        truth::vplGather(scene, truth::EmbreeScene(scene), view, vpls, o.trace.threads);
+    std::vector<glm::dvec3> gathered(indirect.size());
+    for (size_t i = 0; i < gathered.size(); ++i) gathered[i] = g.diffuse[i] + g.glossy[i];
+    engine::writeExr(base + "_vpl.exr", toImage(w, h, [&](size_t i) { return gathered[i]; }));
+    printScore("VPL gather (RSM " + std::to_string(o.vplRsm) + "^2, " + std::to_string(g.vplCount) +
+                   " VPLs, " + std::to_string(g.seconds) + " s)",
+               gathered, indirect, base + "_vpl_error.png", w, h);
+  }
+  if (!o.compare.empty()) {
+    const engine::ImageRgba32f image = engine::readImage(o.compare);
+    if (uint32_t(image.width) != w || uint32_t(image.height) != h)
+      throw engine::Error(o.compare + ": " + std::to_string(image.width) + "x" +
+                          std::to_string(image.height) + " image, the reference is " +
+                          std::to_string(w) + "x" + std::to_string(h));
+    std::vector<glm::dvec3> test(indirect.size());
+    for (size_t i = 0; i < test.size(); ++i)
+      test[i] = glm::dvec3(image.pixels[4 * i], image.pixels[4 * i + 1], image.pixels[4 * i + 2]);
+    printScore(
+        o.compare, test, indirect,
+        (std::filesystem::path(o.outDir) / std::filesystem::path(o.compare).stem()).string() +
+            "_error.png",
+        w, h);
+  }
   return 0;
 }
 

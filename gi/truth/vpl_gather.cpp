@@ -1,0 +1,107 @@
+#include "vpl_gather.h"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "engine/brdf_reference.h"
+#include "engine/gbuffer_reference.h"
+#include "engine/raster_reference.h"
+#include "passes/rsm.h"
+#include "pixel_parallel.h"
+#include "reference/rsm_reference.h"
+#include "shading_point.h"
+
+namespace truth {
+
+std::vector<Vpl> rsmVpls(const engine::Scene& scene, uint32_t light, uint32_t rsmSize) {
+  const engine::Light& l = scene.lights.at(light);
+  const gi::RsmView view = gi::makeRsmView(scene, l, rsmSize);
+  const engine::ReferenceRaster raster =
+      engine::rasterizeReference(scene, view.view.viewProj, rsmSize, rsmSize);
+  const engine::GBufferData surface =
+      engine::resolveGBufferReference(scene, view.view, raster.visibility);
+  const std::vector<gi::RsmTexelReference> texels =
+      gi::rsmFluxReference(surface, view, gi::lightFluxSource(l));
+  const glm::dvec3 origin(view.origin), axis(view.axis);
+  std::vector<Vpl> vpls;
+  for (size_t i = 0; i < texels.size(); ++i) {
+    const gi::RsmTexelReference& t = texels[i];
+    if (t.lit == 0.0) continue;
+    const engine::GBufferSample& s = surface.samples[i];
+    Vpl v;
+    v.position = origin + t.offset;
+    v.normal = s.normal;
+    v.incident = t.incident;
+    v.diffuse = s.diffuse;
+    v.f0 = s.f0;
+    v.roughness = s.roughness;
+    // The texel's patch: its solid angle from the light (texelArea cos^3 on the unit-distance
+    // plane, as the flux) times t^2 / cos at the surface; a parallel beam's texelArea / cos.
+    double cosine;
+    if (view.perspective) {
+      const double t2 = glm::dot(t.offset, t.offset);
+      v.toLight = -t.offset / std::sqrt(t2);
+      const double c = glm::dot(-v.toLight, axis);
+      cosine = std::abs(glm::dot(v.normal, v.toLight));
+      v.area = view.texelArea * c * c * c * t2 / std::max(cosine, 1e-6);
+    } else {
+      v.toLight = -axis;
+      cosine = std::abs(glm::dot(v.normal, v.toLight));
+      v.area = view.texelArea / std::max(cosine, 1e-6);
+    }
+    vpls.push_back(v);
+  }
+  return vpls;
+}
+
+VplGatherImage vplGather(const engine::Scene& scene, const EmbreeScene& rays,
+                         const engine::View& view, const std::vector<Vpl>& vpls, unsigned threads) {
+  const auto start = std::chrono::steady_clock::now();
+  VplGatherImage image;
+  image.width = view.width;
+  image.height = view.height;
+  const size_t pixels = size_t{view.width} * view.height;
+  image.diffuse.assign(pixels, glm::dvec3(0.0));
+  image.glossy.assign(pixels, glm::dvec3(0.0));
+  image.vplCount = vpls.size();
+  forEachPixel(pixels, threadCount(threads), [&](size_t i) {
+    const auto px = static_cast<uint32_t>(i % view.width),
+               py = static_cast<uint32_t>(i / view.width);
+    const engine::CameraRay ray = engine::cameraRayReference(view, glm::dvec2(px + 0.5, py + 0.5));
+    const RayHit hit = rays.intersect(ray.origin, ray.dir);
+    if (!hit.hit) return;
+    const ShadingPoint x = shadingPoint(scene, hit, ray.origin, ray.dir);
+    const engine::GBufferSample& s = x.surface;
+    const glm::dvec3 v = -ray.dir;
+    const glm::dvec3 xo = offsetOrigin(x.position, x.geometricNormal);
+    glm::dvec3 diffuse(0.0), glossy(0.0);
+    for (const Vpl& vpl : vpls) {
+      const glm::dvec3 toVpl = vpl.position - x.position;
+      const double d2 = glm::dot(toVpl, toVpl);
+      const double d = std::sqrt(d2);
+      if (d <= 0.0) continue;
+      const glm::dvec3 w = toVpl / d;  // x -> VPL
+      const double cosX = glm::dot(s.normal, w), cosY = glm::dot(vpl.normal, -w);
+      if (cosX <= 0.0 || cosY <= 0.0 || glm::dot(x.geometricNormal, w) <= 0.0) continue;
+      // Both ends off their surfaces (the VPL lies on one): x's offset point to the VPL's,
+      // lifted along its normal towards x's side.
+      if (!rays.visible(xo, offsetOrigin(vpl.position, vpl.normal))) continue;
+      if (glm::dot(vpl.normal, vpl.toLight) <= 0.0) continue;  // lit from behind its normal
+      const glm::dvec3 fy = vpl.diffuse / std::numbers::pi +
+                            engine::ggxSpecular(vpl.normal, -w, vpl.toLight, vpl.f0, vpl.roughness);
+      // Intensity towards x: the patch's radiance f_y E, E = Phi_in / A (Phi_in already holds
+      // the light's cosine), times A cos_y.
+      const glm::dvec3 intensity = fy * vpl.incident * cosY;
+      const glm::dvec3 arriving = intensity / (d2 + vpl.area / std::numbers::pi);
+      diffuse += s.diffuse / std::numbers::pi * cosX * arriving;
+      glossy += engine::ggxSpecular(s.normal, v, w, s.f0, s.roughness) * cosX * arriving;
+    }
+    image.diffuse[i] = diffuse;
+    image.glossy[i] = glossy;
+  });
+  image.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+}  // namespace truth

@@ -1,0 +1,102 @@
+// The reference cache: entries come back bit for bit, any change of input misses, a damaged
+// entry is reported and rendered again, and cachedPathTrace renders once.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "analytic_scene.h"
+#include "path_tracer.h"
+#include "reference_cache.h"
+
+namespace {
+
+// An empty directory under the system's temporary one, removed with the test.
+struct TempDirectory {
+  std::string path;
+  explicit TempDirectory(const std::string& name)
+      : path((std::filesystem::temp_directory_path() / ("vsgl_cache_" + name)).string()) {
+    std::filesystem::remove_all(path);
+  }
+  ~TempDirectory() { std::filesystem::remove_all(path); }
+};
+
+truth::CachedImage smallImage() {
+  truth::CachedImage image{2, 3, 2, {}, {4.5, -1.0}};
+  for (int i = 0; i < 12; ++i) image.values.push_back(0.1 * i - 0.35);
+  return image;
+}
+
+TEST(ReferenceCache, StoredEntryComesBackBitForBit) {
+  const TempDirectory dir("roundtrip");
+  const truth::ReferenceCache cache(dir.path);
+  truth::CacheKey key;
+  key.add(42).add(std::string("settings"));
+  EXPECT_FALSE(cache.load("test", key));
+  const truth::CachedImage image = smallImage();
+  cache.store("test", key, image);
+  const std::optional<truth::CachedImage> back = cache.load("test", key);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->width, image.width);
+  EXPECT_EQ(back->height, image.height);
+  EXPECT_EQ(back->channels, image.channels);
+  EXPECT_EQ(back->values, image.values);
+  EXPECT_EQ(back->scalars, image.scalars);
+}
+
+TEST(ReferenceCache, KeyChangesWithEveryInput) {
+  const truth::AnalyticSceneParams params;
+  engine::Scene scene = truth::makeAnalyticScene(params);
+  const engine::View view = engine::cameraView(scene.cameras.front(), 8, 6);
+  const uint64_t base = truth::CacheKey().add(scene).add(view).value();
+  scene.lights[0].intensity *= 1.0001f;
+  EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), base);
+  scene = truth::makeAnalyticScene(params);
+  scene.materials[0].roughnessFactor = 0.5f;
+  EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), base);
+  scene = truth::makeAnalyticScene(params);
+  EXPECT_EQ(truth::CacheKey().add(scene).add(view).value(), base);
+  const engine::View wider = engine::cameraView(scene.cameras.front(), 9, 6);
+  EXPECT_NE(truth::CacheKey().add(scene).add(wider).value(), base);
+}
+
+TEST(ReferenceCache, DamagedEntryIsRenderedAgain) {
+  const TempDirectory dir("damaged");
+  const truth::ReferenceCache cache(dir.path);
+  truth::CacheKey key;
+  key.add(7);
+  cache.store("test", key, smallImage());
+  std::filesystem::resize_file(cache.path("test", key), 40);  // truncated
+  EXPECT_FALSE(cache.load("test", key));
+  std::ofstream(cache.path("test", key), std::ios::binary | std::ios::trunc) << "not a reference";
+  EXPECT_FALSE(cache.load("test", key));
+}
+
+TEST(ReferenceCache, PathTraceRendersOnceThenReads) {
+  const TempDirectory dir("pathtrace");
+  const truth::ReferenceCache cache(dir.path);
+  const truth::AnalyticSceneParams params;
+  const engine::Scene scene = truth::makeAnalyticScene(params);
+  const engine::View view = engine::cameraView(scene.cameras.front(), 10, 6);
+  truth::PathTraceSettings settings;
+  settings.relativeError = 0.1;
+  settings.minSamples = 32;
+  settings.maxSamples = 256;
+  bool fromCache = true;
+  const truth::PathTraceImage first =
+      truth::cachedPathTrace(cache, scene, view, 0, settings, &fromCache);
+  EXPECT_FALSE(fromCache);
+  const truth::PathTraceImage second =
+      truth::cachedPathTrace(cache, scene, view, 0, settings, &fromCache);
+  EXPECT_TRUE(fromCache);
+  EXPECT_EQ(second.direct, first.direct);
+  EXPECT_EQ(second.diffuse, first.diffuse);
+  EXPECT_EQ(second.glossy, first.glossy);
+  EXPECT_EQ(second.standardError, first.standardError);
+  EXPECT_EQ(second.samples, first.samples);
+  settings.seed = 2;  // another input: rendered again
+  truth::cachedPathTrace(cache, scene, view, 0, settings, &fromCache);
+  EXPECT_FALSE(fromCache);
+}
+
+}  // namespace

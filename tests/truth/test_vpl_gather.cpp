@@ -1,0 +1,62 @@
+// The VPL gather against the analytic scene's quadrature, at three RSM resolutions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "analytic_scene.h"
+#include "embree_scene.h"
+#include "engine/gbuffer_reference.h"
+#include "reference/rsm_reference.h"
+#include "vpl_gather.h"
+
+namespace {
+
+constexpr uint32_t kWidth = 40, kHeight = 24;  // aspect 1.66: the wall spans the width
+
+// Summed one-bounce luminance over the wall pixels at least 1 cm above the floor: gathered and
+// exact.
+struct WallSums {
+  double gathered = 0.0;
+  double exact = 0.0;
+};
+
+WallSums wallSums(const truth::AnalyticSceneParams& p, const engine::View& view,
+                  const truth::VplGatherImage& image) {
+  WallSums sums;
+  for (uint32_t y = 0; y < kHeight; ++y)
+    for (uint32_t x = 0; x < kWidth; ++x) {
+      const engine::CameraRay ray = engine::cameraRayReference(view, glm::dvec2(x + 0.5, y + 0.5));
+      if (ray.dir.x <= 0.0) continue;
+      const glm::dvec3 point = ray.origin + (p.wallX - ray.origin.x) / ray.dir.x * ray.dir;
+      if (point.y < 0.01 || point.y > p.wallHeight || std::abs(point.z) > p.wallHalfWidth) continue;
+      const size_t i = size_t{y} * kWidth + x;
+      sums.gathered += gi::luminance709(image.diffuse[i] + image.glossy[i]);
+      sums.exact += gi::luminance709(truth::analyticOneBounceRadiance(p, point, -ray.dir));
+    }
+  return sums;
+}
+
+// The gather's only approximation is the RSM's discretisation of the lit disc (the wall is 0.8 m
+// or more from it, so each VPL's disc regularisation is negligible there): its error must fall as
+// the RSM is refined, and be within the 1 % at 128^2 (2.1 cm texels).
+TEST(VplGather, ApproachesAnalyticOneBounceAsTheRsmRefines) {
+  const truth::AnalyticSceneParams params;
+  const engine::Scene scene = truth::makeAnalyticScene(params);
+  const truth::EmbreeScene rays(scene);
+  const engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
+  double previous = INFINITY;
+  for (uint32_t size : {32u, 64u, 128u}) {
+    const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, 0, size);
+    const truth::VplGatherImage image = truth::vplGather(scene, rays, view, vpls);
+    const WallSums sums = wallSums(params, view, image);
+    const double error = std::abs(sums.gathered - sums.exact) / sums.exact;
+    std::printf("RSM %u^2: %zu VPLs, wall error %.4f %%, %.2f s\n", size, vpls.size(),
+                100.0 * error, image.seconds);
+    EXPECT_LT(error, previous) << "RSM " << size;
+    previous = error;
+  }
+  EXPECT_LT(previous, 0.01);
+}
+
+}  // namespace
