@@ -25,10 +25,10 @@
 
 namespace truth {
 
-// How many samples a pixel gets: enough, by a pilot of minSamples (then discarded), for the
-// standard error of its indirect luminance (Rec. 709) to reach relativeError of its mean, or
-// relativeError x floorFraction of the image's mean indirect luminance, whichever is larger;
-// within [minSamples, maxSamples].
+// How many samples a pixel gets: enough, by two sizing runs (a pilot of minSamples, then a
+// quarter of the predicted count; both discarded), for the standard error of its indirect
+// luminance (Rec. 709) to reach relativeError of its mean, or relativeError x floorFraction of
+// the image's mean indirect luminance, whichever is larger; within [minSamples, maxSamples].
 struct PathTraceSettings {
   double relativeError = 0.01;
   double floorFraction = 0.1;
@@ -52,7 +52,11 @@ struct PathTraceImage {
   std::vector<double> standardError;  // of the luminance of diffuse + glossy, per pixel
   std::vector<uint32_t> samples;      // per pixel (0 on background)
   double noiseFloor = 0.0;            // the absolute standard-error target (see settings)
-  uint32_t unconverged = 0;           // pixels whose final standard error misses the target
+  // Final standard error over its target, median and 95th percentile over the pixels: the
+  // counts aim at 1, so about half the pixels land a little above it; the 95th percentile
+  // shows how far the heavy tails of the worst pixels escaped the sizing runs.
+  double medianErrorRatio = 0.0;
+  double p95ErrorRatio = 0.0;
   double seconds = 0.0;
 };
 

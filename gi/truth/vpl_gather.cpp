@@ -88,8 +88,15 @@ VplGatherImage vplGather(const engine::Scene& scene, const EmbreeScene& rays,
       // lifted along its normal towards x's side.
       if (!rays.visible(xo, offsetOrigin(vpl.position, vpl.normal))) continue;
       if (glm::dot(vpl.normal, vpl.toLight) <= 0.0) continue;  // lit from behind its normal
+      // The VPL's GGX lobe widened by the patch's angular size seen from x (path
+      // regularisation, Kaplanyan and Dachsbacher 2013): a point sample of a near-mirror lobe
+      // (the checker's alpha = 0.0064) would otherwise flash wherever one VPL happens to align;
+      // the widening vanishes as the RSM is refined, so the gather still converges.
+      const double alpha = std::max(vpl.roughness * vpl.roughness, engine::kMinAlpha);
+      const double widened =
+          std::sqrt(std::sqrt(alpha * alpha + vpl.area / (4.0 * std::numbers::pi * d2)));
       const glm::dvec3 fy = vpl.diffuse / std::numbers::pi +
-                            engine::ggxSpecular(vpl.normal, -w, vpl.toLight, vpl.f0, vpl.roughness);
+                            engine::ggxSpecular(vpl.normal, -w, vpl.toLight, vpl.f0, widened);
       // Intensity towards x: the patch's radiance f_y E, E = Phi_in / A (Phi_in already holds
       // the light's cosine), times A cos_y.
       const glm::dvec3 intensity = fy * vpl.incident * cosY;

@@ -8,7 +8,9 @@
 // intensity is f_y(l, w) Phi cos_y, and the receiver gets f_x(w, v) cos_x I / d^2. The 1/d^2 of
 // a point is replaced by the on-axis form factor of a disc of area A, 1 / (d^2 + A / pi): the same
 // far away, bounded where a receiver touches the VPL, and converging to the exact integral as the
-// RSM is refined (no clamping constant to tune).
+// RSM is refined (no clamping constant to tune). For the same reason the VPL's GGX lobe is
+// widened by the patch's angular size seen from the receiver (alpha^2 + A / (4 pi d^2)), so a
+// near-mirror surface does not turn each VPL into a spike.
 #pragma once
 
 #include <cstdint>

@@ -148,10 +148,10 @@ int run(const Options& o) {
       ++pixels;
     }
   std::printf(
-      "traced %.1f s: %.0f samples per pixel on average, %u of %llu pixels above their "
-      "target at %u samples, noise floor %.3g W/(sr m^2)\n",
-      r.seconds, pixels ? double(samples) / double(pixels) : 0.0, r.unconverged,
-      static_cast<unsigned long long>(pixels), o.trace.maxSamples, r.noiseFloor);
+      "traced %.1f s: %.0f samples per pixel on average; standard error / target: "
+      "median %.2f, 95th percentile %.2f; noise floor %.3g W/(sr m^2)\n",
+      r.seconds, pixels ? double(samples) / double(pixels) : 0.0, r.medianErrorRatio,
+      r.p95ErrorRatio, r.noiseFloor);
 
   const std::string base =
       (std::filesystem::path(o.outDir) / std::filesystem::path(o.scene).stem()).string() +
