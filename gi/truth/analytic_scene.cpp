@@ -210,4 +210,13 @@ glm::dvec3 analyticOneBounceRadiance(const AnalyticSceneParams& p, glm::dvec3 wa
   return radiance.diffuse + radiance.glossy;
 }
 
+std::optional<glm::dvec3> analyticWallHit(const AnalyticSceneParams& p, glm::dvec3 origin,
+                                          glm::dvec3 dir) {
+  if (dir.x <= 0.0) return std::nullopt;
+  const glm::dvec3 point = origin + (p.wallX - origin.x) / dir.x * dir;
+  if (point.y < 0.01 || point.y > p.wallHeight || std::abs(point.z) > p.wallHalfWidth)
+    return std::nullopt;
+  return point;
+}
+
 }  // namespace truth

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "engine/scene.h"
 
@@ -79,6 +80,11 @@ OneBounceRadiance analyticOneBounce(const AnalyticSceneParams& p, glm::dvec3 wal
 // diffuse + glossy of analyticOneBounce.
 glm::dvec3 analyticOneBounceRadiance(const AnalyticSceneParams& p, glm::dvec3 wallPoint,
                                      glm::dvec3 viewDir);
+
+// Where the ray origin + t dir (t > 0) meets the wall, if it does at least 1 cm above the floor
+// (pixels at the wall's foot may show the floor instead): the points tests score.
+std::optional<glm::dvec3> analyticWallHit(const AnalyticSceneParams& p, glm::dvec3 origin,
+                                          glm::dvec3 dir);
 
 // The direct radiance leaving floor point q (y = 0) towards viewDir (unit, from q to the viewer):
 // f_f (n_f . l) I falloff / |s - q|^2, closed form. W sr^-1 m^-2.

@@ -14,6 +14,7 @@
 #include "engine/direct_light_reference.h"
 #include "engine/error.h"
 #include "engine/gbuffer_reference.h"
+#include "engine/orthonormal_basis.h"
 #include "pixel_parallel.h"
 #include "reference/rsm_reference.h"
 #include "shading_point.h"
@@ -46,16 +47,13 @@ class Pcg32 {
   uint64_t inc_;
 };
 
-// An orthonormal frame around unit n (Duff et al. 2017, "Building an Orthonormal Basis,
-// Revisited").
+// A local frame around unit n: z = n.
 struct Frame {
   glm::dvec3 t, b, n;
   explicit Frame(glm::dvec3 normal) : n(normal) {
-    const double s = n.z >= 0.0 ? 1.0 : -1.0;
-    const double a = -1.0 / (s + n.z);
-    const double c = n.x * n.y * a;
-    t = glm::dvec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
-    b = glm::dvec3(c, s + n.y * n.y * a, -n.y);
+    const engine::OrthonormalBasis basis = engine::orthonormalBasis(n);
+    t = basis.tangent;
+    b = basis.bitangent;
   }
   glm::dvec3 toLocal(glm::dvec3 w) const {
     return {glm::dot(w, t), glm::dot(w, b), glm::dot(w, n)};
@@ -93,10 +91,6 @@ double visibleNormalReflectionPdf(glm::dvec3 v, glm::dvec3 l, double alpha) {
   return g1 * engine::ggxD(h.z, a2) / (4.0 * nv);
 }
 
-double luminance(glm::dvec3 c) {
-  return gi::luminance709(c);
-}
-
 // Radiance that `light` reflects at `at` towards `toViewer`, with an exact shadow ray; each
 // lobe apart (Lambert, GGX).
 struct Reflected {
@@ -129,11 +123,35 @@ Reflected reflectLight(const EmbreeScene& rays, const gpu::GpuLight& light, cons
   return r;
 }
 
+// x's BRDF sampling, fixed per pixel: the mixture of cosine and GGX visible-normal sampling, in x's
+// frame.
+struct Lobes {
+  Frame frame;
+  glm::dvec3 v;
+  double alpha;
+  double pSpecular;
+  Lobes(const engine::GBufferSample& s, glm::dvec3 view)
+      : frame(s.normal), v(frame.toLocal(view)), alpha(ggxAlpha(s.roughness)) {
+    // Lobe choice in proportion to the lobes' weights, kept in [0.1, 0.9] so that neither
+    // starves; cosine sampling only when the view grazes the shading normal.
+    const double dw = gi::luminance709(s.diffuse), sw = gi::luminance709(s.f0);
+    pSpecular = dw + sw > 0.0 ? std::clamp(sw / (dw + sw), 0.1, 0.9) : 0.5;
+    if (v.z <= engine::kMinNv) pSpecular = 0.0;
+  }
+  // Solid-angle density of a local direction l.
+  double pdf(glm::dvec3 l) const {
+    if (l.z <= 0.0) return 0.0;
+    return (pSpecular > 0.0 ? pSpecular * visibleNormalReflectionPdf(v, l, alpha) : 0.0) +
+           (1.0 - pSpecular) * l.z / kPi;
+  }
+};
+
 // Per-pixel running sums of the indirect estimate.
 struct PixelState {
   bool background = true;
   ShadingPoint x{};
   glm::dvec3 view{0.0};
+  Lobes lobes{engine::GBufferSample{}, glm::dvec3(0.0, 0.0, 1.0)};  // set with x in pass 1
   glm::dvec3 direct{0.0};
   glm::dvec3 diffuseSum{0.0};
   glm::dvec3 glossySum{0.0};
@@ -207,7 +225,7 @@ class Tracer {
       : scene_(scene), rays_(rays), bouncing_(bouncing), lightSampler_(light, scene.bounds()) {}
 
   void sample(PixelState& px) const {
-    const Lobes lobes(px);
+    const Lobes& lobes = px.lobes;
     Pcg32& rng = px.rng;
     const double u[5] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
     Contribution c = brdfStrategy(px, lobes, u[0], u[1], u[2]);
@@ -216,37 +234,13 @@ class Tracer {
     c.glossy += b.glossy;
     px.diffuseSum += c.diffuse;
     px.glossySum += c.glossy;
-    const double y = luminance(c.diffuse + c.glossy);
+    const double y = gi::luminance709(c.diffuse + c.glossy);
     px.luminanceSum += y;
     px.luminanceSquares += y * y;
     ++px.samples;
   }
 
  private:
-  // x's BRDF sampling: the mixture of cosine and GGX visible-normal sampling, in x's frame.
-  struct Lobes {
-    Frame frame;
-    glm::dvec3 v;
-    double alpha;
-    double pSpecular;
-    explicit Lobes(const PixelState& px)
-        : frame(px.x.surface.normal),
-          v(frame.toLocal(px.view)),
-          alpha(ggxAlpha(px.x.surface.roughness)) {
-      // Lobe choice in proportion to the lobes' weights, kept in [0.1, 0.9] so that neither
-      // starves; cosine sampling only when the view grazes the shading normal.
-      const double dw = luminance(px.x.surface.diffuse), sw = luminance(px.x.surface.f0);
-      pSpecular = dw + sw > 0.0 ? std::clamp(sw / (dw + sw), 0.1, 0.9) : 0.5;
-      if (v.z <= engine::kMinNv) pSpecular = 0.0;
-    }
-    // Solid-angle density of a local direction l.
-    double pdf(glm::dvec3 l) const {
-      if (l.z <= 0.0) return 0.0;
-      return (pSpecular > 0.0 ? pSpecular * visibleNormalReflectionPdf(v, l, alpha) : 0.0) +
-             (1.0 - pSpecular) * l.z / kPi;
-    }
-  };
-
   struct Contribution {
     glm::dvec3 diffuse{0.0};
     glm::dvec3 glossy{0.0};
@@ -366,6 +360,7 @@ PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
     px.background = false;
     px.x = shadingPoint(scene, hit, ray.origin, ray.dir);
     px.view = -ray.dir;
+    px.lobes = Lobes(px.x.surface, px.view);
     for (const gpu::GpuLight& light : lights) {
       const Reflected r = reflectLight(rays, light, px.x, px.view, settings.directShadows);
       px.direct += r.diffuse + r.glossy;
@@ -411,10 +406,11 @@ PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
     if (!px.background) {
       // Two sizing runs, then the final one, each started afresh so that no decision rests on
       // the samples the image keeps: the pilot sizes a second run at a quarter of what it
-      // predicts, and that run, with several times the pilot's samples, sizes the final one.
-      // A pilot of a few hundred samples often misses the rare paths that carry the variance
-      // (measured on the Cornell box at a 2 % target: 55 % of the pixels missed it when the
-      // pilot sized the final run directly).
+      // predicts, and that run, with several times the pilot's samples, sizes the final one,
+      // since a pilot of a few hundred samples can miss the rare paths that carry a pixel's
+      // variance. (How much the second run helps has not been measured against one sizing
+      // run: a count aimed exactly at the target leaves about half the pixels slightly above
+      // it either way, so the image reports the ratio's percentiles instead.)
       double target = 0.0;
       for (const double share : {0.25, 1.0}) {
         const double mean = px.luminanceSum / px.samples;

@@ -23,17 +23,6 @@ struct Fixture {
   engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
 };
 
-// Where pixel (x, y)'s ray meets the wall plane, if inside the wall.
-bool wallPoint(const Fixture& f, uint32_t x, uint32_t y, glm::dvec3& point, glm::dvec3& toEye) {
-  const engine::CameraRay ray = engine::cameraRayReference(f.view, glm::dvec2(x + 0.5, y + 0.5));
-  if (ray.dir.x <= 0.0) return false;
-  const double t = (f.params.wallX - ray.origin.x) / ray.dir.x;
-  point = ray.origin + t * ray.dir;
-  toEye = -ray.dir;
-  return point.y > 0.0 && point.y < f.params.wallHeight &&
-         std::abs(point.z) < f.params.wallHalfWidth;
-}
-
 // Each wall pixel's estimate against the quadrature. Tolerances: the 1 % on the summed
 // wall radiance, and that sum within 4 of its standard errors (the per-pixel ones combined:
 // pixels are independent); per pixel, at most 1 % of the pixels beyond 4.5 standard errors
@@ -48,10 +37,11 @@ TEST(PathTracer, MatchesAnalyticOneBounce) {
   int pixels = 0, outliers = 0;
   for (uint32_t y = 0; y < kHeight; ++y)
     for (uint32_t x = 0; x < kWidth; ++x) {
-      glm::dvec3 p, toEye;
-      if (!wallPoint(f, x, y, p, toEye)) continue;
-      // Pixels whose ray passes within 1 cm of the wall's floor edge may hit the floor.
-      if (p.y < 0.01) continue;
+      const engine::CameraRay ray =
+          engine::cameraRayReference(f.view, glm::dvec2(x + 0.5, y + 0.5));
+      const std::optional<glm::dvec3> wall = truth::analyticWallHit(f.params, ray.origin, ray.dir);
+      if (!wall) continue;
+      const glm::dvec3 p = *wall, toEye = -ray.dir;
       const size_t i = size_t{y} * kWidth + x;
       const truth::OneBounceRadiance oracle = truth::analyticOneBounce(f.params, p, toEye);
       const double t = gi::luminance709(image.diffuse[i] + image.glossy[i]);

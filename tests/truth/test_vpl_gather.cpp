@@ -27,12 +27,11 @@ WallSums wallSums(const truth::AnalyticSceneParams& p, const engine::View& view,
   for (uint32_t y = 0; y < kHeight; ++y)
     for (uint32_t x = 0; x < kWidth; ++x) {
       const engine::CameraRay ray = engine::cameraRayReference(view, glm::dvec2(x + 0.5, y + 0.5));
-      if (ray.dir.x <= 0.0) continue;
-      const glm::dvec3 point = ray.origin + (p.wallX - ray.origin.x) / ray.dir.x * ray.dir;
-      if (point.y < 0.01 || point.y > p.wallHeight || std::abs(point.z) > p.wallHalfWidth) continue;
+      const std::optional<glm::dvec3> point = truth::analyticWallHit(p, ray.origin, ray.dir);
+      if (!point) continue;
       const size_t i = size_t{y} * kWidth + x;
       sums.gathered += gi::luminance709(image.diffuse[i] + image.glossy[i]);
-      sums.exact += gi::luminance709(truth::analyticOneBounceRadiance(p, point, -ray.dir));
+      sums.exact += gi::luminance709(truth::analyticOneBounceRadiance(p, *point, -ray.dir));
     }
   return sums;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/orthonormal_basis.h"
+
 namespace gi {
 
 namespace {
@@ -72,13 +74,9 @@ IsmFrameReference ismFrameReference(const gpu::Vsgl& vsgl, double centreOffset) 
         (wd * glm::dvec3(vsgl.diffuse.meanVariance) + ws * glm::dvec3(vsgl.specular.meanVariance)) /
             (wd + ws) +
         centreOffset * f.axis;
-  // Duff et al. 2017, as in the shader.
-  const glm::dvec3 n = f.axis;
-  const double s = n.z >= 0.0 ? 1.0 : -1.0;
-  const double a = -1.0 / (s + n.z);
-  const double b = n.x * n.y * a;
-  f.tangent = glm::dvec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
-  f.bitangent = glm::dvec3(b, s + n.y * n.y * a, -n.y);
+  const engine::OrthonormalBasis basis = engine::orthonormalBasis(f.axis);
+  f.tangent = basis.tangent;
+  f.bitangent = basis.bitangent;
   return f;
 }
 
