@@ -14,7 +14,8 @@
 
 namespace truth {
 
-std::vector<Vpl> rsmVpls(const engine::Scene& scene, uint32_t light, uint32_t rsmSize) {
+std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, uint32_t light,
+                         uint32_t rsmSize) {
   const engine::Light& l = scene.lights.at(light);
   const gi::RsmView view = gi::makeRsmView(scene, l, rsmSize);
   const engine::ReferenceRaster raster =
@@ -32,6 +33,18 @@ std::vector<Vpl> rsmVpls(const engine::Scene& scene, uint32_t light, uint32_t rs
     Vpl v;
     v.position = origin + t.offset;
     v.normal = s.normal;
+    v.geometricNormal = s.normal;
+    // The RSM's fp32 depth puts the texel's point up to ~1e-4 of the light's range off its
+    // surface, more than a ray offset can clear: a third of the Cornell box's VPLs at 32^2 sat
+    // below their surface and shadowed themselves (the gather read 10 % low). The light's ray
+    // through the point finds the surface the texel saw; the VPL moves onto it, in double.
+    const glm::dvec3 dir = view.perspective ? glm::normalize(t.offset) : axis;
+    const glm::dvec3 start = view.perspective ? origin : v.position - dir * glm::dot(t.offset, dir);
+    if (const RayHit hit = rays.intersect(start, dir); hit.hit) {
+      const ShadingPoint snapped = shadingPoint(scene, hit, start, dir);
+      v.position = snapped.position;
+      v.geometricNormal = snapped.geometricNormal;
+    }
     v.incident = t.incident;
     v.diffuse = s.diffuse;
     v.f0 = s.f0;
@@ -86,23 +99,27 @@ VplGatherImage vplGather(const engine::Scene& scene, const EmbreeScene& rays,
       if (cosX <= 0.0 || cosY <= 0.0 || glm::dot(x.geometricNormal, w) <= 0.0) continue;
       // Both ends off their surfaces (the VPL lies on one): x's offset point to the VPL's,
       // lifted along its normal towards x's side.
-      if (!rays.visible(xo, offsetOrigin(vpl.position, vpl.normal))) continue;
+      if (!rays.visible(xo, offsetOrigin(vpl.position, vpl.geometricNormal))) continue;
       if (glm::dot(vpl.normal, vpl.toLight) <= 0.0) continue;  // lit from behind its normal
-      // The VPL's GGX lobe widened by the patch's angular size seen from x (path
-      // regularisation, Kaplanyan and Dachsbacher 2013): a point sample of a near-mirror lobe
-      // (the checker's alpha = 0.0064) would otherwise flash wherever one VPL happens to align;
-      // the widening vanishes as the RSM is refined, so the gather still converges.
-      const double alpha = std::max(vpl.roughness * vpl.roughness, engine::kMinAlpha);
-      const double widened =
-          std::sqrt(std::sqrt(alpha * alpha + vpl.area / (4.0 * std::numbers::pi * d2)));
-      const glm::dvec3 fy = vpl.diffuse / std::numbers::pi +
-                            engine::ggxSpecular(vpl.normal, -w, vpl.toLight, vpl.f0, widened);
+      // Both GGX lobes, the VPL's and the receiver's, widened by the patch's angular size seen
+      // from x (path regularisation, Kaplanyan and Dachsbacher 2013): a point sample of a
+      // near-mirror lobe (the checker's alpha = 0.0064) would otherwise flash wherever one VPL
+      // happens to align, at either end; the widening vanishes as the RSM is refined, so the
+      // gather still converges.
+      const double spread = vpl.area / (4.0 * std::numbers::pi * d2);
+      const auto widened = [spread](double roughness) {
+        const double alpha = std::max(roughness * roughness, engine::kMinAlpha);
+        return std::sqrt(std::sqrt(alpha * alpha + spread));  // back to GGX's perceptual roughness
+      };
+      const glm::dvec3 fy =
+          vpl.diffuse / std::numbers::pi +
+          engine::ggxSpecular(vpl.normal, -w, vpl.toLight, vpl.f0, widened(vpl.roughness));
       // Intensity towards x: the patch's radiance f_y E, E = Phi_in / A (Phi_in already holds
       // the light's cosine), times A cos_y.
       const glm::dvec3 intensity = fy * vpl.incident * cosY;
       const glm::dvec3 arriving = intensity / (d2 + vpl.area / std::numbers::pi);
       diffuse += s.diffuse / std::numbers::pi * cosX * arriving;
-      glossy += engine::ggxSpecular(s.normal, v, w, s.f0, s.roughness) * cosX * arriving;
+      glossy += engine::ggxSpecular(s.normal, v, w, s.f0, widened(s.roughness)) * cosX * arriving;
     }
     image.diffuse[i] = diffuse;
     image.glossy[i] = glossy;

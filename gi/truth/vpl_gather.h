@@ -8,9 +8,9 @@
 // intensity is f_y(l, w) Phi cos_y, and the receiver gets f_x(w, v) cos_x I / d^2. The 1/d^2 of
 // a point is replaced by the on-axis form factor of a disc of area A, 1 / (d^2 + A / pi): the same
 // far away, bounded where a receiver touches the VPL, and converging to the exact integral as the
-// RSM is refined (no clamping constant to tune). For the same reason the VPL's GGX lobe is
-// widened by the patch's angular size seen from the receiver (alpha^2 + A / (4 pi d^2)), so a
-// near-mirror surface does not turn each VPL into a spike.
+// RSM is refined (no clamping constant to tune). For the same reason both GGX lobes, the VPL's
+// and the receiver's, are widened by the patch's angular size seen from the receiver
+// (alpha^2 + A / (4 pi d^2)), so a near-mirror surface does not turn a VPL into a spike.
 #pragma once
 
 #include <cstdint>
@@ -25,18 +25,21 @@ namespace truth {
 
 struct Vpl {
   glm::dvec3 position{0.0};
-  glm::dvec3 normal{0.0};    // shading normal, facing the light
-  glm::dvec3 toLight{0.0};   // unit direction from the VPL to the light
-  glm::dvec3 incident{0.0};  // Phi_in per channel, W
-  double area = 0.0;         // the texel's patch, m^2
-  glm::dvec3 diffuse{0.0};   // albedo
+  glm::dvec3 normal{0.0};           // shading normal, facing the light
+  glm::dvec3 geometricNormal{0.0};  // of the triangle it lies on, facing the light
+  glm::dvec3 toLight{0.0};          // unit direction from the VPL to the light
+  glm::dvec3 incident{0.0};         // Phi_in per channel, W
+  double area = 0.0;                // the texel's patch, m^2
+  glm::dvec3 diffuse{0.0};          // albedo
   glm::dvec3 f0{0.0};
   double roughness = 0.0;
 };
 
 // The lit texels of light `light`'s rsmSize^2 RSM (gi::makeRsmView, rasterised and resolved by
-// the CPU references, flux by gi::rsmFluxReference).
-std::vector<Vpl> rsmVpls(const engine::Scene& scene, uint32_t light, uint32_t rsmSize);
+// the CPU references, flux by gi::rsmFluxReference), each moved onto the surface `rays` finds
+// along the light's ray through it.
+std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, uint32_t light,
+                         uint32_t rsmSize);
 
 struct VplGatherImage {
   uint32_t width = 0;

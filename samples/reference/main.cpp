@@ -174,9 +174,9 @@ int run(const Options& o) {
   std::vector<glm::dvec3> indirect(r.diffuse.size());
   for (size_t i = 0; i < indirect.size(); ++i) indirect[i] = r.diffuse[i] + r.glossy[i];
   if (o.vplRsm > 0) {
-    const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, light, o.vplRsm);
-    const truth::VplGatherImage g =
-        truth::vplGather(scene, truth::EmbreeScene(scene), view, vpls, o.trace.threads);
+    const truth::EmbreeScene rays(scene);
+    const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, rays, light, o.vplRsm);
+    const truth::VplGatherImage g = truth::vplGather(scene, rays, view, vpls, o.trace.threads);
     std::vector<glm::dvec3> gathered(indirect.size());
     for (size_t i = 0; i < gathered.size(); ++i) gathered[i] = g.diffuse[i] + g.glossy[i];
     engine::writeExr(base + "_vpl.exr", toImage(w, h, [&](size_t i) { return gathered[i]; }));
