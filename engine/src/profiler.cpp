@@ -20,6 +20,8 @@ GpuProfiler::~GpuProfiler() {
 
 void GpuProfiler::beginFrame(VkCommandBuffer cmd) {
   names_.clear();
+  dispatchesAtBegin_.clear();
+  dispatches_.clear();
   vkCmdResetQueryPool(cmd, pool_, 0, 2 * maxScopes_);
 }
 
@@ -28,11 +30,14 @@ uint32_t GpuProfiler::begin(VkCommandBuffer cmd, const std::string& name) {
     throw Error("GpuProfiler: more than " + std::to_string(maxScopes_) + " scopes in a frame");
   auto scope = static_cast<uint32_t>(names_.size());
   names_.push_back(name);
+  dispatchesAtBegin_.push_back(ctx_.dispatchCount());
+  dispatches_.push_back(0);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope);
   return scope;
 }
 
 void GpuProfiler::end(VkCommandBuffer cmd, uint32_t scope) {
+  dispatches_[scope] = static_cast<uint32_t>(ctx_.dispatchCount() - dispatchesAtBegin_[scope]);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, 2 * scope + 1);
 }
 
@@ -50,10 +55,12 @@ std::vector<PassTime> GpuProfiler::results(bool wait) const {
     double ms = static_cast<double>(ticks[2 * i + 1] - ticks[2 * i]) * nsPerTick_ * 1e-6;
     auto it = std::find_if(out.begin(), out.end(),
                            [&](const PassTime& p) { return p.name == names_[i]; });
-    if (it != out.end())
+    if (it != out.end()) {
       it->ms += ms;
-    else
-      out.push_back({names_[i], ms});
+      it->dispatches += dispatches_[i];
+    } else {
+      out.push_back({names_[i], ms, dispatches_[i]});
+    }
   }
   return out;
 }

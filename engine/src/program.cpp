@@ -120,7 +120,10 @@ void ComputeProgram::dispatch(VkCommandBuffer cmd, std::initializer_list<Binding
                               const void* push, uint32_t pushBytes, uint32_t groupsX,
                               uint32_t groupsY, uint32_t groupsZ) const {
   bind(cmd, bindings, push, pushBytes);
-  if (groupsX > 0 && groupsY > 0 && groupsZ > 0) vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+  if (groupsX > 0 && groupsY > 0 && groupsZ > 0) {
+    vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+    ctx_->countDispatch();
+  }
 }
 
 }  // namespace engine

@@ -11,11 +11,15 @@
 #include "engine/rasterizer.h"
 #include "passes/brsm_pdf.h"
 #include "passes/ism.h"
+#include "passes/kmeans.h"
 #include "passes/vsgl_shade.h"
 #include "shared/vsgl_shade.h"
 
 namespace gi {
 namespace {
+
+// Timed scopes per frame: about 12 fixed passes plus 3 per k-means iteration (64 at most).
+constexpr uint32_t kProfilerScopes = 256;
 
 // Settings that size resources; setSettings refuses to change them.
 bool sameCreationFields(const Settings& a, const Settings& b) {
@@ -95,7 +99,7 @@ struct IndirectLighting::Impl {
         ism(ctx, s.ism, maxCount),
         shade(ctx),
         indirect(createIndirectImages(ctx, w, h)),
-        profiler(ctx) {
+        profiler(ctx, kProfilerScopes) {
     if (s.pdf == PdfKind::Brsm) createBrsm();
   }
 
@@ -105,6 +109,8 @@ struct IndirectLighting::Impl {
   }
 
   void record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out);
+  // The VSGLs of this frame: sampled with FIS or clustered with k-means.
+  const engine::Buffer& recordVsgls(VkCommandBuffer cmd, const RsmView& rsmView, uint32_t rule);
 
   engine::Context ctx;
   Settings settings;
@@ -118,6 +124,7 @@ struct IndirectLighting::Impl {
   ReflectiveShadowMap rsm;
   VsglAttributes attributes;
   VsglGenerator generator;
+  std::optional<KmeansClustering> kmeans;     // created with the first k-means frame
   std::optional<ImportanceVsgls> importance;  // BRSM stage A, created with the first Brsm frame
   std::optional<BrsmPdf> brsmPdf;             // BRSM stage B
   Ism ism;                                    // always built: ismEnabled may change per frame
@@ -170,19 +177,18 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
     if (brsm)
       brsmPdf->record(cmd, attributes, rsmView, importance->vsgls(), settings.brsm, mips,
                       &profiler);
-    generator.record(cmd, attributes, rsmView, {settings.vsglCount, settings.kernelScale, rule},
-                     &profiler);
+    const engine::Buffer& vsgls = recordVsgls(cmd, rsmView, rule);
     // The maps are built for the shading's visibility or for the debug view, whichever asks.
     if (settings.ismEnabled || settings.debugVsgl >= 0) {
       if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
       ismPointsStale = false;
-      ism.recordBuild(cmd, *scene, generator.vsgls(), settings.vsglCount, &profiler);
+      ism.recordBuild(cmd, *scene, vsgls, settings.vsglCount, &profiler);
     }
     const uint32_t flags = (settings.glossy ? VSGL_SHADE_GLOSSY : 0u) |
                            (settings.ismEnabled ? VSGL_SHADE_VISIBILITY : 0u);
     shade.record(cmd, gbuffer, camera.invViewProj,
-                 {&generator.vsgls(), settings.vsglCount, flags, &ism.atlas(), ism.params()},
-                 indirect, &profiler);
+                 {&vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()}, indirect,
+                 &profiler);
     if (settings.debugVsgl >= 0) {
       if (!debugVisibility) {
         engine::ImageDesc desc;
@@ -191,8 +197,8 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
         desc.format = VK_FORMAT_R32_SFLOAT;
         debugVisibility.emplace(ctx, desc);  // recordVisibility gives it its first layout
       }
-      ism.recordVisibility(cmd, gbuffer, camera, generator.vsgls(),
-                           static_cast<uint32_t>(settings.debugVsgl), *debugVisibility, &profiler);
+      ism.recordVisibility(cmd, gbuffer, camera, vsgls, static_cast<uint32_t>(settings.debugVsgl),
+                           *debugVisibility, &profiler);
     }
     // The outputs, written by compute, become visible to whatever the host does next.
     engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -207,9 +213,30 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   if (settings.debugVsgl >= 0)
     out.debugVisibility = {debugVisibility->handle(), debugVisibility->view(),
                            debugVisibility->layout()};
-  out.vsgls = generator.vsgls().handle();
+  out.vsgls =
+      (kmeans && settings.method != VsglMethod::FilteredImportanceSampling ? kmeans->vsgls()
+                                                                           : generator.vsgls())
+          .handle();
   out.vsglCount = settings.vsglCount;
   out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
+}
+
+const engine::Buffer& IndirectLighting::Impl::recordVsgls(VkCommandBuffer cmd,
+                                                          const RsmView& rsmView, uint32_t rule) {
+  if (settings.method == VsglMethod::FilteredImportanceSampling) {
+    generator.record(cmd, attributes, rsmView, {settings.vsglCount, settings.kernelScale, rule},
+                     &profiler);
+    return generator.vsgls();
+  }
+  if (!kmeans) kmeans.emplace(ctx, settings.rsmSize, maxCount);
+  KmeansPassSettings k;
+  k.clusters = settings.vsglCount;
+  k.iterations = settings.kmeans.iterations;
+  k.space = settings.method == VsglMethod::KmeansImage ? KMEANS_SPACE_IMAGE : KMEANS_SPACE_WORLD;
+  k.weighting = settings.kmeans.pdfWeighted ? KMEANS_WEIGHT_PDF : KMEANS_WEIGHT_UNIFORM;
+  k.reuseCentres = settings.kmeans.temporal;
+  kmeans->record(cmd, attributes, rsmView, k, &profiler);
+  return kmeans->vsgls();
 }
 
 IndirectLighting::IndirectLighting(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -295,7 +322,7 @@ Status IndirectLighting::record(VkCommandBuffer cmd, const FrameInput& input, Fr
 
 std::vector<PassTime> IndirectLighting::lastFrameTimes() const {
   std::vector<PassTime> out;
-  for (const engine::PassTime& p : impl_->profiler.results(false)) out.push_back({p.name, p.ms});
+  for (const engine::PassTime& p : impl_->profiler.results(false)) out.push_back({p.name, p.ms, p.dispatches});
   return out;
 }
 

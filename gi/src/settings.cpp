@@ -5,6 +5,7 @@
 
 #include "passes/brsm_pdf.h"
 #include "passes/ism.h"
+#include "passes/kmeans.h"
 
 namespace gi {
 namespace {
@@ -34,6 +35,14 @@ std::string validateSettings(const Settings& s) {
     return field("rule", std::to_string(uint32_t(s.rule)), "is neither Tok15 nor Modified");
   if (s.pdf != PdfKind::Flux && s.pdf != PdfKind::Brsm)
     return field("pdf", std::to_string(uint32_t(s.pdf)), "is neither Flux nor Brsm");
+  if (s.method != VsglMethod::FilteredImportanceSampling && s.method != VsglMethod::KmeansImage &&
+      s.method != VsglMethod::KmeansWorld)
+    return field("method", std::to_string(uint32_t(s.method)),
+                 "is none of FilteredImportanceSampling, KmeansImage, KmeansWorld");
+  if (s.kmeans.iterations < 1 || s.kmeans.iterations > KmeansClustering::kMaxIterations)
+    return field(
+        "kmeans.iterations", std::to_string(s.kmeans.iterations),
+        ("is outside [1, " + std::to_string(KmeansClustering::kMaxIterations) + "]").c_str());
   // The passes' own checks, which name the field, so the ranges are written once.
   try {
     validateBrsmSettings(s.brsm, s.rsmSize);

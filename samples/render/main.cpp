@@ -95,9 +95,10 @@ int run(const render::Options& o) {
       if (indirect) render::check(indirect->record(cmd, input, &output));
     });
     if (frame < o.warmup) continue;  // lavapipe compiles pipelines at their first dispatch
-    for (const auto& pass : profiler.results()) passTimes.add(pass.name, pass.ms);
+    for (const auto& pass : profiler.results()) passTimes.add(pass.name, pass.ms, pass.dispatches);
     if (indirect)
-      for (const auto& pass : indirect->lastFrameTimes()) passTimes.add("gi " + pass.name, pass.ms);
+      for (const auto& pass : indirect->lastFrameTimes())
+        passTimes.add("gi " + pass.name, pass.ms, pass.dispatches);
   }
   passTimes.print(o.frames, indirect ? o.gi.vsglCount : 0, o.width * o.height);
   // The machine's FMA peak in the same run, to read the pass times against (benchmarks report

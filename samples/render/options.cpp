@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <string_view>
+#include <tuple>
+#include <utility>
 
 #include "cli_values.h"
 #include "engine/error.h"
@@ -31,7 +33,12 @@ const char* usage() {
          "  --export-gltf PATH   also write the scene as a .gltf file\n"
          "indirect light (VSGLs through the public API, gi/include/gi/settings.h):\n"
          "  --no-indirect        direct light only\n"
-         "  --method NAME        kernel rule: modified (modified FIS, default) or tok15\n"
+         "  --method NAME        modified (modified FIS, default), tok15 (Tokuyoshi 2015's kernel\n"
+         "                       rule), or the baselines kmeans-2d / kmeans-3d (k-means of the\n"
+         "                       RSM's texels in image or world space)\n"
+         "  --kmeans-iterations N  k-means iterations per frame, 1..64 (default 4)\n"
+         "  --kmeans-weights W   pdf (default) or uniform texel weights in the k-means centres\n"
+         "  --kmeans-fresh       seed k-means afresh each frame (default: previous centres)\n"
          "  --pdf NAME           brsm (view-dependent, default) or flux\n"
          "  --count N            VSGLs per frame, 1..65535 (default 128; the paper: 1024)\n"
          "  --k K                kernel mass K/N, 1..N (default 1)\n"
@@ -86,9 +93,19 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--no-indirect")
       o.indirect = false;
     else if (arg == "--method")
-      o.gi.rule = parseChoice<gi::KernelRule>(
+      std::tie(o.gi.method, o.gi.rule) = parseChoice<std::pair<gi::VsglMethod, gi::KernelRule>>(
           arg, args.value(),
-          {{"modified", gi::KernelRule::Modified}, {"tok15", gi::KernelRule::Tok15}});
+          {{"modified", {gi::VsglMethod::FilteredImportanceSampling, gi::KernelRule::Modified}},
+           {"tok15", {gi::VsglMethod::FilteredImportanceSampling, gi::KernelRule::Tok15}},
+           {"kmeans-2d", {gi::VsglMethod::KmeansImage, gi::KernelRule::Modified}},
+           {"kmeans-3d", {gi::VsglMethod::KmeansWorld, gi::KernelRule::Modified}}});
+    else if (arg == "--kmeans-iterations")
+      o.gi.kmeans.iterations = parseUint(arg, args.value(), 1, 64);
+    else if (arg == "--kmeans-weights")
+      o.gi.kmeans.pdfWeighted =
+          parseChoice<bool>(arg, args.value(), {{"pdf", true}, {"uniform", false}});
+    else if (arg == "--kmeans-fresh")
+      o.gi.kmeans.temporal = false;
     else if (arg == "--pdf")
       o.gi.pdf = parseChoice<gi::PdfKind>(
           arg, args.value(), {{"brsm", gi::PdfKind::Brsm}, {"flux", gi::PdfKind::Flux}});

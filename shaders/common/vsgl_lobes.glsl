@@ -56,4 +56,28 @@ void lobeFromMeanAxis(vec3 meanAxis, out vec3 axis, out float sharpness) {
   sharpness = banerjeeSharpness(meanLength);
 }
 
+// A VSGL lobe from its cluster sums (vsgl-math.md 3.2), for filtered kernels and k-means
+// clusters alike: mean (relative to the RSM origin, moved to world by `origin`), per-axis
+// variance (never negative), axis and Banerjee sharpness (axis length 0 -> isotropic), power.
+// No weight (w = 0) gives a powerless lobe at the origin.
+VsglLobe buildVsglLobe(vec4 power, vec4 position, vec4 axis, vec3 origin) {
+  VsglLobe lobe;
+  float w = power.w;
+  if (!(w > 0.0)) {
+    lobe.meanVariance = vec4(origin, 0.0);
+    lobe.axisSharpness = vec4(0.0, 0.0, 1.0, 0.0);
+    lobe.power = vec4(0.0);
+    return lobe;
+  }
+  vec3 mean = position.xyz / w;
+  float variance = max(0.0, position.w / w - dot(mean, mean)) * 0.5;
+  vec3 unitAxis;
+  float sharpness;
+  lobeFromMeanAxis(axis.xyz / w, unitAxis, sharpness);
+  lobe.meanVariance = vec4(origin + mean, variance);
+  lobe.axisSharpness = vec4(unitAxis, sharpness);
+  lobe.power = power;
+  return lobe;
+}
+
 #endif

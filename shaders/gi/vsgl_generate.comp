@@ -14,41 +14,11 @@
 
 layout(local_size_x = VSGL_GENERATE_GROUP) in;
 
-// Bindings VSGL_ATTR_*: the attribute pyramids (the PDF is the diffuse axis map's alpha).
-layout(binding = VSGL_ATTR_DIFFUSE_POWER) uniform sampler2D diffusePower;
-layout(binding = VSGL_ATTR_DIFFUSE_POSITION) uniform sampler2D diffusePosition;
-layout(binding = VSGL_ATTR_DIFFUSE_AXIS) uniform sampler2D diffuseAxis;
-layout(binding = VSGL_ATTR_SPECULAR_POWER) uniform sampler2D specularPower;
-layout(binding = VSGL_ATTR_SPECULAR_POSITION) uniform sampler2D specularPosition;
-layout(binding = VSGL_ATTR_SPECULAR_AXIS) uniform sampler2D specularAxis;
+#include "common/attribute_pyramids.glsl"
 layout(std430, binding = VSGL_ATTR_COUNT) writeonly buffer Vsgls { Vsgl vsgls[]; };
 layout(push_constant) uniform Push { VsglGeneratePush pc; };
 
-const float kOneBelow = 1.0 - 1.0 / 16777216.0;  // largest float below 1
-
-// Golden-ratio Fibonacci lattice with a half-step offset (no point on u = 0). The second
-// coordinate frac((i + 1/2)(phi - 1)) is computed in 32-bit fixed point: in fp32 the product
-// reaches thousands and its fraction would lose ~1e-4.
-vec2 fibonacciPoint(uint i, uint n) {
-  const uint kGolden = 2654435769u;  // round((phi - 1) * 2^32)
-  uint frac32 = i * kGolden + kGolden / 2u;
-  return vec2((float(i) + 0.5) / float(n), float(frac32 >> 8) / 16777216.0);
-}
-
-// One binary split of the warp (Clarberg et al. 2005): strict u < q never picks a part of zero
-// mass, even for u = 0; a zero parent (all-zero PDF) splits evenly.
-uint split(inout float u, float first, float second) {
-  float total = first + second;
-  float q = total > 0.0 ? first / total : 0.5;
-  if (u < q) {
-    u = min(u / q, kOneBelow);
-    return 0u;
-  }
-  u = min((u - q) / (1.0 - q), kOneBelow);
-  return 1u;
-}
-
-float pdfTexel(ivec2 t, int level) { return texelFetch(diffuseAxis, t, level).w; }
+#include "common/lattice_warp.glsl"
 
 // Vulkan LINEAR filtering with CLAMP_TO_EDGE on one level, exact weights.
 vec4 bilinear(sampler2D s, vec2 x, int level) {
@@ -97,42 +67,11 @@ float tok15Level(float density) {
   return clamp(0.5 * log2(pc.kernelScale * m / (float(pc.count) * density)), 0.0, top);
 }
 
-// One lobe from kernel sums (vsgl-math.md 3.2): mean, per-axis variance (never negative),
-// axis and Banerjee sharpness (axis length 0 -> isotropic), power.
-VsglLobe buildLobe(vec4 power, vec4 position, vec4 axis) {
-  VsglLobe lobe;
-  float w = power.w;
-  if (!(w > 0.0)) {
-    lobe.meanVariance = vec4(pc.origin.xyz, 0.0);
-    lobe.axisSharpness = vec4(0.0, 0.0, 1.0, 0.0);
-    lobe.power = vec4(0.0);
-    return lobe;
-  }
-  vec3 mean = position.xyz / w;
-  float variance = max(0.0, position.w / w - dot(mean, mean)) * 0.5;
-  vec3 unitAxis;
-  float sharpness;
-  lobeFromMeanAxis(axis.xyz / w, unitAxis, sharpness);
-  lobe.meanVariance = vec4(pc.origin.xyz + mean, variance);
-  lobe.axisSharpness = vec4(unitAxis, sharpness);
-  lobe.power = power;
-  return lobe;
-}
-
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   vec2 u = fibonacciPoint(i, pc.count);
-  ivec2 node = ivec2(0);
-  for (int level = int(pc.topLevel); level > 0; --level) {
-    int child = level - 1;
-    ivec2 c0 = node * 2;
-    float a = pdfTexel(c0, child), b = pdfTexel(c0 + ivec2(1, 0), child);
-    float c = pdfTexel(c0 + ivec2(0, 1), child), e = pdfTexel(c0 + ivec2(1, 1), child);
-    uint column = split(u.x, a + c, b + e);
-    uint row = column == 0u ? split(u.y, a, c) : split(u.y, b, e);
-    node = c0 + ivec2(column, row);
-  }
+  ivec2 node = warpToTexel(u, int(pc.topLevel));
   float size = float(pc.size);
   vec2 x = min((vec2(node) + u) / size, (vec2(node) + kOneBelow) / size);
   float pTop = pdfTexel(ivec2(0), int(pc.topLevel));
@@ -149,12 +88,12 @@ void main() {
               : modified ? (filtered > 0.0 ? m / (float(pc.count) * filtered) : 0.0)
                          : m / max(float(pc.count) * density, 1.0);
   Vsgl v;
-  v.diffuse = buildLobe(scale * trilinear(diffusePower, x, level),
+  v.diffuse = buildVsglLobe(scale * trilinear(diffusePower, x, level),
                         scale * trilinear(diffusePosition, x, level),
-                        scale * diffuseAxisSums);
-  v.specular = buildLobe(scale * trilinear(specularPower, x, level),
+                        scale * diffuseAxisSums, pc.origin.xyz);
+  v.specular = buildVsglLobe(scale * trilinear(specularPower, x, level),
                          scale * trilinear(specularPosition, x, level),
-                         scale * trilinear(specularAxis, x, level));
+                         scale * trilinear(specularAxis, x, level), pc.origin.xyz);
   v.kernel = vec4(x, level, filtered);
   vsgls[i] = v;
 }

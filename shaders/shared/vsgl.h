@@ -29,7 +29,9 @@ struct VsglLobe {
 struct Vsgl {
   VsglLobe diffuse;
   VsglLobe specular;
-  vec4 kernel;  // xy = kernel centre in [0, 1]^2 of the RSM, z = mip level l, w = p~(x, l) (mean 1)
+  // Filtered sampling: xy = kernel centre in [0, 1]^2 of the RSM, z = mip level l,
+  // w = p~(x, l) (mean 1). A k-means cluster (shared/kmeans.h): (0, 0, -1, member texels).
+  vec4 kernel;
 };
 
 SHARED_END

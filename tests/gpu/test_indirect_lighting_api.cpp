@@ -112,9 +112,18 @@ class IndirectLightingApiTest : public testing_gpu::GpuTest {
 };
 
 TEST_F(IndirectLightingApiTest, HostRecordsAndComposites) {
-  for (gi::PdfKind pdf : {gi::PdfKind::Brsm, gi::PdfKind::Flux}) {
+  // Both PDFs with filtered importance sampling, and the two k-means baselines, whose VSGLs
+  // must shade through the same path to finite, non-negative light.
+  const std::pair<gi::PdfKind, gi::VsglMethod> runs[] = {
+      {gi::PdfKind::Brsm, gi::VsglMethod::FilteredImportanceSampling},
+      {gi::PdfKind::Flux, gi::VsglMethod::FilteredImportanceSampling},
+      {gi::PdfKind::Brsm, gi::VsglMethod::KmeansImage},
+      {gi::PdfKind::Flux, gi::VsglMethod::KmeansWorld}};
+  for (auto [pdf, method] : runs) {
+    SCOPED_TRACE("method " + std::to_string(int(method)));
     gi::Settings settings = smallSettings();
     settings.pdf = pdf;
+    settings.method = method;
     // The flux run also shades without ISMs from the first frame on (the atlas is still bound).
     settings.ismEnabled = pdf == gi::PdfKind::Brsm;
     gi::Status status;
@@ -167,12 +176,14 @@ TEST_F(IndirectLightingApiTest, HostRecordsAndComposites) {
     EXPECT_GT(lit, depth.size() / 2) << "pdf " << int(pdf);
 
     const std::vector<gi::PassTime> times = lighting->lastFrameTimes();
-    bool shading = false, total = false;
+    bool shading = false, total = false, clustered = false;
     for (const gi::PassTime& t : times) {
       shading |= t.name == "vsgl shading";
       total |= t.name == "frame" && t.ms > 0.0;
+      clustered |= t.name == "k-means assign";
     }
     EXPECT_TRUE(shading && total);
+    EXPECT_EQ(clustered, method != gi::VsglMethod::FilteredImportanceSampling);
   }
 }
 
@@ -182,6 +193,11 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   gi::Status status;
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
   EXPECT_EQ(status.message, "Settings.rsmSize: 100 is not a power of two in [16, 2048]");
+  settings = smallSettings();
+  settings.method = gi::VsglMethod::KmeansWorld;
+  settings.kmeans.iterations = 0;
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message, "Settings.kmeans.iterations: 0 is outside [1, 64]");
 
   settings = smallSettings();
   auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
@@ -209,6 +225,7 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   gi::Settings next = settings;
   next.rule = gi::KernelRule::Tok15;
   next.ismEnabled = false;
+  next.method = gi::VsglMethod::KmeansImage;  // the baseline may be switched on per frame
   EXPECT_TRUE(lighting->setSettings(next));
   next.rsmSize = 128;
   EXPECT_FALSE(lighting->setSettings(next));

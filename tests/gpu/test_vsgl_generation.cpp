@@ -11,6 +11,7 @@
 #include "passes/vsgl_generate.h"
 #include "reference/vsgl_attributes_reference.h"
 #include "reference/vsgl_sampling.h"
+#include "rsm_rig.h"
 
 namespace {
 
@@ -21,51 +22,30 @@ class VsglAttributesTest : public testing_gpu::GpuTest {
   void SetUp() override {
     testing_gpu::GpuTest::SetUp();
     if (IsSkipped()) return;
-    scene_ = engine::makeBuiltinScene("cornell");
-    light_ = scene_.lights.at(0);
-    view_ = gi::makeRsmView(scene_, light_, kSize);
-    gpuScene_ = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx(), scene_));
-    rasterizer_ = std::make_unique<engine::Rasterizer>(ctx());
-    resolve_ = std::make_unique<engine::GBufferResolve>(ctx());
-    rsm_ = std::make_unique<gi::ReflectiveShadowMap>(ctx(), kSize);
-    mips_ = std::make_unique<gi::MipPyramid>(ctx());
-    attributes_ = std::make_unique<gi::VsglAttributes>(ctx(), kSize);
-    ctx().submitAndWait([&](VkCommandBuffer cmd) {
-      rsm_->record(cmd, *gpuScene_, *rasterizer_, *resolve_, view_, light_);
-    });
+    rig_ = std::make_unique<testing_gpu::RsmRig>(ctx(), "cornell", kSize);
   }
 
-  void buildAttributes() {
-    ctx().submitAndWait([&](VkCommandBuffer cmd) {
-      attributes_->record(cmd, rsm_->vpls(), rsm_->surface(), view_, *mips_);
-    });
-  }
+  void buildAttributes() { rig_->buildAttributes(ctx()); }
 
-  engine::Scene scene_;
-  engine::Light light_;
-  gi::RsmView view_;
-  std::unique_ptr<engine::SceneGpu> gpuScene_;
-  std::unique_ptr<engine::Rasterizer> rasterizer_;
-  std::unique_ptr<engine::GBufferResolve> resolve_;
-  std::unique_ptr<gi::ReflectiveShadowMap> rsm_;
-  std::unique_ptr<gi::MipPyramid> mips_;
-  std::unique_ptr<gi::VsglAttributes> attributes_;
+  std::unique_ptr<testing_gpu::RsmRig> rig_;
 };
 
 TEST_F(VsglAttributesTest, TopLevelTimesTexelCountConservesRsmPower) {
   // The 1x1 level is the mean of all texels: times M it must give back the RSM's total
   // reflected power, within the pyramid's fp32 bound 2 L u (L = 6 levels) = 7.2e-7 relative.
   buildAttributes();
-  auto diffuse = rsm_->diffuseFlux().readbackRgba32f(ctx(), 0);
-  auto specular = rsm_->specularFlux().readbackRgba32f(ctx(), 0);
+  auto diffuse = rig_->rsm->diffuseFlux().readbackRgba32f(ctx(), 0);
+  auto specular = rig_->rsm->specularFlux().readbackRgba32f(ctx(), 0);
   glm::dvec3 totalDiffuse(0.0), totalSpecular(0.0);
   for (size_t i = 0; i < diffuse.size(); ++i) {
     totalDiffuse += glm::dvec3(diffuse[i]);
     totalSpecular += glm::dvec3(specular[i]);
   }
   const double m = double(kSize) * kSize, bound = 2.0 * 6.0 * std::ldexp(1.0, -24);
-  auto topDiffuse = attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER).readbackRgba32f(ctx(), 6).at(0);
-  auto topSpecular = attributes_->pyramid(VSGL_ATTR_SPECULAR_POWER).readbackRgba32f(ctx(), 6).at(0);
+  auto topDiffuse =
+      rig_->attributes->pyramid(VSGL_ATTR_DIFFUSE_POWER).readbackRgba32f(ctx(), 6).at(0);
+  auto topSpecular =
+      rig_->attributes->pyramid(VSGL_ATTR_SPECULAR_POWER).readbackRgba32f(ctx(), 6).at(0);
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(topDiffuse[k] * m, totalDiffuse[k], bound * totalDiffuse[k]) << "channel " << k;
     EXPECT_NEAR(topSpecular[k] * m, totalSpecular[k], bound * totalSpecular[k]) << "channel " << k;
@@ -76,18 +56,18 @@ TEST_F(VsglAttributesTest, TopLevelTimesTexelCountConservesRsmPower) {
 
 TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
   buildAttributes();
-  gi::RsmImages rsm{rsm_->position().readbackRgba32f(ctx(), 0),
-                    rsm_->diffuseFlux().readbackRgba32f(ctx(), 0),
-                    rsm_->specularFlux().readbackRgba32f(ctx(), 0),
-                    engine::readbackGBuffer(ctx(), rsm_->surface())};
-  auto ref = gi::vsglAttributesReference(rsm, view_);
+  gi::RsmImages rsm{rig_->rsm->position().readbackRgba32f(ctx(), 0),
+                    rig_->rsm->diffuseFlux().readbackRgba32f(ctx(), 0),
+                    rig_->rsm->specularFlux().readbackRgba32f(ctx(), 0),
+                    engine::readbackGBuffer(ctx(), rig_->rsm->surface())};
+  auto ref = gi::vsglAttributesReference(rsm, rig_->view);
   // fp32 products of a handful of roundings against double: 1e-5 relative per channel, with an
   // absolute floor of 1e-6 of the channel's largest magnitude (axis components near zero).
   // The specular axis also goes through the fp32 lobe and Banerjee inverse (errors near 1e-5
   // of the mean length for sharp lobes, see vsgl_lobes.glsl), so it gets 1e-4.
   for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
     SCOPED_TRACE("attribute " + std::to_string(a));
-    auto gpu = attributes_->pyramid(a).readbackRgba32f(ctx(), 0);
+    auto gpu = rig_->attributes->pyramid(a).readbackRgba32f(ctx(), 0);
     double largest = 0.0;
     for (const auto& v : ref[a])
       for (int k = 0; k < 4; ++k) largest = std::max(largest, std::abs(v[k]));
@@ -102,27 +82,27 @@ TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
 TEST_F(VsglAttributesTest, ANonFiniteTexelDoesNotPoisonThePyramid) {
   // Inject a NaN and an Inf into two lit RSM texels: they must contribute zero, and every level
   // of every pyramid must stay finite (vsgl-math.md section 12, case 14).
-  auto diffuse = rsm_->diffuseFlux().readbackRgba32f(ctx(), 0);
-  auto position = rsm_->position().readbackRgba32f(ctx(), 0);
+  auto diffuse = rig_->rsm->diffuseFlux().readbackRgba32f(ctx(), 0);
+  auto position = rig_->rsm->position().readbackRgba32f(ctx(), 0);
   std::vector<size_t> lit;
   for (size_t i = 0; i < position.size() && lit.size() < 2; ++i)
     if (position[i].w > 0.0f) lit.push_back(i);
   ASSERT_EQ(lit.size(), 2u);
   diffuse[lit[0]].g = std::nanf("");
   position[lit[1]].x = INFINITY;
-  rsm_->diffuseFlux().upload(ctx(), diffuse.data(), diffuse.size() * sizeof(glm::vec4));
-  rsm_->position().upload(ctx(), position.data(), position.size() * sizeof(glm::vec4));
+  rig_->rsm->diffuseFlux().upload(ctx(), diffuse.data(), diffuse.size() * sizeof(glm::vec4));
+  rig_->rsm->position().upload(ctx(), position.data(), position.size() * sizeof(glm::vec4));
   ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    engine::imageBarrier(cmd, rsm_->diffuseFlux(), VK_IMAGE_LAYOUT_GENERAL);
-    engine::imageBarrier(cmd, rsm_->position(), VK_IMAGE_LAYOUT_GENERAL);
+    engine::imageBarrier(cmd, rig_->rsm->diffuseFlux(), VK_IMAGE_LAYOUT_GENERAL);
+    engine::imageBarrier(cmd, rig_->rsm->position(), VK_IMAGE_LAYOUT_GENERAL);
   });
   buildAttributes();
   for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
-    auto base = attributes_->pyramid(a).readbackRgba32f(ctx(), 0);
+    auto base = rig_->attributes->pyramid(a).readbackRgba32f(ctx(), 0);
     EXPECT_EQ(base[lit[0]], glm::vec4(0.0f)) << "attribute " << a;
     EXPECT_EQ(base[lit[1]], glm::vec4(0.0f)) << "attribute " << a;
-    for (uint32_t level = 0; level < attributes_->pyramid(a).desc().mips; ++level)
-      for (const glm::vec4& v : attributes_->pyramid(a).readbackRgba32f(ctx(), level))
+    for (uint32_t level = 0; level < rig_->attributes->pyramid(a).desc().mips; ++level)
+      for (const glm::vec4& v : rig_->attributes->pyramid(a).readbackRgba32f(ctx(), level))
         ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
                     std::isfinite(v.w))
             << "attribute " << a << " level " << level;
@@ -142,7 +122,7 @@ TEST_F(VsglAttributesTest, GeneratedVsglsMatchReferenceForBothRules) {
   std::array<gi::VectorPyramid, VSGL_ATTR_COUNT> pyramids;
   std::vector<double> pdfBase;
   for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
-    auto base = attributes_->pyramid(a).readbackRgba32f(ctx(), 0);
+    auto base = rig_->attributes->pyramid(a).readbackRgba32f(ctx(), 0);
     std::vector<glm::dvec4> wide(base.begin(), base.end());
     if (a == VSGL_ATTR_DIFFUSE_AXIS)
       for (const glm::dvec4& v : wide) pdfBase.push_back(v.w);
@@ -154,10 +134,12 @@ TEST_F(VsglAttributesTest, GeneratedVsglsMatchReferenceForBothRules) {
     for (uint32_t n : {64u, 1000u}) {
       SCOPED_TRACE("rule " + std::to_string(rule) + " N " + std::to_string(n));
       gi::VsglSettings settings{n, 1.0f, rule};
-      ctx().submitAndWait(
-          [&](VkCommandBuffer cmd) { generator.record(cmd, *attributes_, view_, settings); });
+      ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        generator.record(cmd, *rig_->attributes, rig_->view, settings);
+      });
       auto gpu = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
-      auto ref = gi::generateVsglsReference(pyramids, pdf, glm::dvec3(view_.origin), n, 1.0, rule);
+      auto ref =
+          gi::generateVsglsReference(pyramids, pdf, glm::dvec3(rig_->view.origin), n, 1.0, rule);
       size_t flips = 0;
       glm::dvec3 gpuTotal(0.0), refTotal(0.0);
       for (uint32_t i = 0; i < n; ++i) {
@@ -195,12 +177,12 @@ TEST_F(VsglAttributesTest, ModifiedFisConservesTheRsmPower) {
   // 2 % of the total for a PDF proportional to power (the energy test), and with
   // K >= N every VSGL holds exactly total / N.
   buildAttributes();
-  auto top = attributes_->pyramid(VSGL_ATTR_DIFFUSE_POWER).readbackRgba32f(ctx(), 6).at(0);
+  auto top = rig_->attributes->pyramid(VSGL_ATTR_DIFFUSE_POWER).readbackRgba32f(ctx(), 6).at(0);
   const double total = double(top.g) * kSize * kSize;
   gi::VsglGenerator generator(ctx(), 1024);
   for (uint32_t n : {64u, 256u, 1024u}) {
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
-      generator.record(cmd, *attributes_, view_, {n, 1.0f, VSGL_RULE_MODIFIED});
+      generator.record(cmd, *rig_->attributes, rig_->view, {n, 1.0f, VSGL_RULE_MODIFIED});
     });
     auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
     double sum = 0.0;
@@ -211,7 +193,7 @@ TEST_F(VsglAttributesTest, ModifiedFisConservesTheRsmPower) {
   }
   const uint32_t n = 16;
   ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    generator.record(cmd, *attributes_, view_, {n, float(n), VSGL_RULE_MODIFIED});
+    generator.record(cmd, *rig_->attributes, rig_->view, {n, float(n), VSGL_RULE_MODIFIED});
   });
   auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
   for (uint32_t i = 0; i < n; ++i)
@@ -226,7 +208,8 @@ TEST_F(VsglAttributesTest, AnAllZeroRsmGivesFiniteVsglsWithoutPower) {
     VkClearColorValue zero{};
     VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     engine::computeToTransferBarrier(cmd);
-    for (engine::Image* image : {&rsm_->position(), &rsm_->diffuseFlux(), &rsm_->specularFlux()})
+    for (engine::Image* image :
+         {&rig_->rsm->position(), &rig_->rsm->diffuseFlux(), &rig_->rsm->specularFlux()})
       vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
     engine::transferToComputeBarrier(cmd);
   });
@@ -234,7 +217,7 @@ TEST_F(VsglAttributesTest, AnAllZeroRsmGivesFiniteVsglsWithoutPower) {
   gi::VsglGenerator generator(ctx(), 64);
   for (uint32_t rule : {VSGL_RULE_TOK15, VSGL_RULE_MODIFIED}) {
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
-      generator.record(cmd, *attributes_, view_, {64, 1.0f, rule});
+      generator.record(cmd, *rig_->attributes, rig_->view, {64, 1.0f, rule});
     });
     auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
     for (uint32_t i = 0; i < 64; ++i) {

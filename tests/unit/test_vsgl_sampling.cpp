@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "lcg.h"
 #include "reference/rsm_reference.h"
 #include "reference/vsgl_sampling.h"
 
@@ -22,18 +23,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // The VSGL record is fp32: a double rounded to float is off by at most 2^-24 relative.
 constexpr double kFloatRounding = 0x1p-24;
 
-// Fixed-seed 64-bit LCG (Knuth's MMIX constants): portable, unlike std distributions.
-class Lcg {
- public:
-  explicit Lcg(uint64_t seed) : state_(seed) {}
-  double next() {
-    state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
-    return double(state_ >> 11) * 0x1p-53;
-  }
-
- private:
-  uint64_t state_;
-};
+using testing_common::Lcg;
 
 // A 16x16 PDF with a 1:50 range that varies in both directions.
 std::vector<double> wavyPdf(uint32_t size) {

@@ -12,6 +12,7 @@ namespace engine {
 struct PassTime {
   std::string name;
   double ms = 0.0;
+  uint32_t dispatches = 0;  // compute dispatches the pass recorded
 };
 
 class GpuProfiler {
@@ -26,9 +27,9 @@ class GpuProfiler {
   uint32_t begin(VkCommandBuffer cmd, const std::string& name);
   void end(VkCommandBuffer cmd, uint32_t scope);
 
-  // Per-pass times of the last recorded frame; valid once its submission has completed.
-  // Scopes with the same name are summed (e.g. one shadow pass per light). With wait = false
-  // (a host's device, where we never wait) an unfinished frame gives an empty list.
+  // Per-pass times and dispatch counts of the last recorded frame; valid once its submission
+  // has completed. Scopes with the same name are summed (e.g. one shadow pass per light). With wait
+  // = false (a host's device, where we never wait) an unfinished frame gives an empty list.
   std::vector<PassTime> results(bool wait = true) const;
 
  private:
@@ -36,6 +37,8 @@ class GpuProfiler {
   VkQueryPool pool_ = VK_NULL_HANDLE;
   uint32_t maxScopes_;
   std::vector<std::string> names_;
+  std::vector<uint64_t> dispatchesAtBegin_;  // per scope; turned into counts by end()
+  std::vector<uint32_t> dispatches_;
   double nsPerTick_;
 };
 

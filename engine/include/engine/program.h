@@ -69,6 +69,7 @@ class ComputeProgram {
                         const Push& push, const Buffer& args, VkDeviceSize offset) const {
     bind(cmd, bindings, &push, sizeof(Push));
     vkCmdDispatchIndirect(cmd, args.handle(), offset);
+    ctx_->countDispatch();
   }
 
  private:

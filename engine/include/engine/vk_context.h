@@ -95,6 +95,12 @@ class Context {
 
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 
+  // Compute dispatches recorded so far (engine::ComputeProgram counts them), so the profiler can
+  // report how many each pass records, the figure [S3]'s Table 3 compares. Recording into one
+  // Context happens on one thread.
+  uint64_t dispatchCount() const { return dispatches_; }
+  void countDispatch() { ++dispatches_; }
+
  private:
   static VkBool32 VKAPI_PTR onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                            VkDebugUtilsMessageTypeFlagsEXT types,
@@ -116,6 +122,7 @@ class Context {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
 
+  uint64_t dispatches_ = 0;
   std::atomic<uint32_t> validationMessages_{0};
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;

@@ -131,6 +131,7 @@ struct FrameOutput {
 struct PassTime {
   std::string name;
   double ms = 0.0;
+  uint32_t dispatches = 0;  // compute dispatches the pass recorded
 };
 
 class IndirectLighting {

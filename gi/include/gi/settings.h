@@ -15,6 +15,28 @@ enum class KernelRule : uint32_t {
   Modified = 1,  // modified FIS: the kernel holds K/N of the PDF mass (bisection, [S3] Eq. 3)
 };
 
+// How the RSM's texels become VSGLs.
+enum class VsglMethod : uint32_t {
+  // The module's method: kernels sampled from the PDF and sized by `rule` (vsgl-math.md 5-6).
+  FilteredImportanceSampling = 0,
+  // The baseline ([S3] Tables 1-3): k-means clusters of texels in 2-D RSM image coordinates or
+  // of VPL positions in 3-D world space (vsgl-math.md section 9, docs/techniques/kmeans.md).
+  KmeansImage = 1,
+  KmeansWorld = 2,
+};
+
+struct KmeansSettings {
+  // Lloyd iterations per frame, [1, 64]. Cost per iteration ~ rsmSize^2 x vsglCount distance
+  // tests (assignment) + a radix sort of rsmSize^2 pairs + the sums.
+  uint32_t iterations = 4;
+  // Centres weighted by the PDF (view-dependent with PdfKind::Brsm, [PKD12]); false: every
+  // texel with power weighs the same. No cost.
+  bool pdfWeighted = true;
+  // Start each frame from the previous frame's centres (temporally coherent, [PKD12]); false:
+  // fresh PDF-proportional seeds every frame. Changing vsglCount or the method reseeds.
+  bool temporal = true;
+};
+
 // Which PDF the VSGLs sample over the RSM (vsgl-math.md section 7).
 enum class PdfKind : uint32_t {
   Flux = 0,  // proportional to reflected flux: view-independent, cheapest
@@ -83,6 +105,10 @@ struct Settings {
   float kernelScale = 1.0f;
   KernelRule rule = KernelRule::Modified;
   PdfKind pdf = PdfKind::Brsm;
+  // FilteredImportanceSampling, or a k-means baseline for comparison (its resources are created
+  // with its first frame: keys, values and sort scratch of 16 bytes per RSM texel).
+  VsglMethod method = VsglMethod::FilteredImportanceSampling;
+  KmeansSettings kmeans;
   BrsmSettings brsm;
   // Indirect visibility with imperfect shadow maps (vsgl-math.md section 8). Off: every VSGL
   // lights every receiver it faces (light leaks through walls); saves the ISM build and the
