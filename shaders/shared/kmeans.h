@@ -20,6 +20,7 @@
 // keeps the keys within bit_width(K) bits for the radix sort.
 #define KMEANS_SEED_GROUP 64
 #define KMEANS_ASSIGN_GROUP 64
+#define KMEANS_ASSIGN_TEXELS 16  // texels per assign thread (kmeans_assign.comp says why)
 #define KMEANS_FILL_GROUP 256
 #define KMEANS_BOUNDS_GROUP 256
 #define KMEANS_SUM_GROUP 64  // threads summing one cluster

@@ -112,7 +112,7 @@ void KmeansClustering::record(VkCommandBuffer cmd, VsglAttributes& attributes, c
           {pyramid(0), pyramid(1), pyramid(2), pyramid(3), pyramid(4), pyramid(5),
            Binding::storage(centres_), Binding::storage(keys_), Binding::storage(values_),
            Binding::storage(counts_), Binding::storage(costliest_)},
-          push, engine::groupCount(texels, KMEANS_ASSIGN_GROUP));
+          push, engine::groupCount(texels, KMEANS_ASSIGN_GROUP * KMEANS_ASSIGN_TEXELS));
       engine::computeBarrier(cmd);
       fill_.dispatch(cmd,
                      {Binding::storage(keys_), Binding::storage(counts_),
