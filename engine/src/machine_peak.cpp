@@ -4,7 +4,9 @@
 #include "engine/commands.h"
 #include "engine/profiler.h"
 #include "engine/program.h"
+#include "shared/bandwidth_peak.h"
 #include "shared/fma_peak.h"
+#include "spirv/bandwidth_peak.h"
 #include "spirv/fma_peak.h"
 
 namespace engine {
@@ -26,6 +28,24 @@ struct Kernel {
   }
   ComputeProgram program;
   Buffer results;
+};
+
+struct CopyKernel {
+  CopyKernel(Context& ctx, VkDeviceSize bytes)
+      : program(ctx, "bandwidth_peak", kBandwidthPeakSpv,
+                {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                sizeof(gpu::BandwidthPeakPush)),
+        source(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly),
+        destination(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly) {}
+  void record(VkCommandBuffer cmd) {
+    const auto count = static_cast<uint32_t>(source.size() / sizeof(glm::vec4));
+    gpu::BandwidthPeakPush push{count, 0, 0, 0};
+    program.dispatch(cmd, {Binding::storage(source), Binding::storage(destination)}, push,
+                     groupCount(count, BANDWIDTH_PEAK_GROUP * BANDWIDTH_PEAK_PER_THREAD));
+  }
+  ComputeProgram program;
+  Buffer source;
+  Buffer destination;
 };
 
 }  // namespace
@@ -68,6 +88,34 @@ std::vector<float> runFmaPeakKernel(Context& ctx, uint32_t threads, uint32_t ite
   Kernel kernel(ctx, threads);
   ctx.submitAndWait([&](VkCommandBuffer cmd) { kernel.record(cmd, threads, iterations, a, b); });
   return kernel.results.readbackAs<float>(ctx);
+}
+
+BandwidthPeak measureBandwidthPeak(Context& ctx, uint32_t megabytes, uint32_t runs) {
+  CopyKernel kernel(ctx, VkDeviceSize{megabytes} << 20);
+  // Written once so the copy reads real data (a never-written allocation may be lazily backed).
+  ctx.submitAndWait([&](VkCommandBuffer cmd) { fillBuffer(cmd, kernel.source, 0x3f800000u); });
+  GpuProfiler profiler(ctx, 2);
+  std::vector<double> times;
+  for (uint32_t run = 0; run <= runs; ++run) {
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      profiler.beginFrame(cmd);
+      ProfileScope scope(&profiler, cmd, "bandwidth peak");
+      kernel.record(cmd);
+    });
+    if (run > 0) times.push_back(profiler.results().at(0).ms);  // run 0 compiles the pipeline
+  }
+  BandwidthPeak peak;
+  peak.ms = median(times);
+  peak.bytes = 2 * kernel.source.size();
+  peak.gbPerSecond = double(peak.bytes) / (peak.ms * 1e6);
+  return peak;
+}
+
+std::vector<glm::vec4> runBandwidthPeakKernel(Context& ctx, const std::vector<glm::vec4>& source) {
+  CopyKernel kernel(ctx, source.size() * sizeof(glm::vec4));
+  kernel.source.upload(ctx, source.data(), source.size() * sizeof(glm::vec4));
+  ctx.submitAndWait([&](VkCommandBuffer cmd) { kernel.record(cmd); });
+  return kernel.destination.readbackAs<glm::vec4>(ctx);
 }
 
 }  // namespace engine

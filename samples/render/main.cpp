@@ -101,10 +101,13 @@ int run(const render::Options& o) {
         passTimes.add("gi " + pass.name, pass.ms, pass.dispatches);
   }
   passTimes.print(o.frames, indirect ? o.gi.vsglCount : 0, o.width * o.height);
-  // The machine's FMA peak in the same run, to read the pass times against (benchmarks report
-  // fractions of it; absolute times on a shared machine drift).
+  // The machine's FMA and memory peaks in the same run, to read the pass times against
+  // (benchmarks report fractions of them; absolute times on a shared machine drift).
   const engine::FmaPeak peak = engine::measureFmaPeak(ctx);
   std::printf("device FMA peak (measured now): %.1f GFLOP/s\n", peak.gflops);
+  const engine::BandwidthPeak bandwidth = engine::measureBandwidthPeak(ctx);
+  std::printf("device memory bandwidth (copy, measured now): %.1f GB/s\n",
+              bandwidth.gbPerSecond);
 
   std::string base = (std::filesystem::path(o.outDir) / stem).string();
   // Built-in scenes exist only as code; a .gltf copy lets other tools open the same scene.

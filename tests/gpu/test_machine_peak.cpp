@@ -1,5 +1,5 @@
-// The FMA-throughput micro-kernel computes what its CPU twin computes (so the flops it is
-// credited with were really done), and the measurement reports a finite, positive rate.
+// The machine-peak micro-kernels compute what their CPU twins compute (so the flops and bytes
+// they are credited with were really done), and the measurements report finite, positive rates.
 #include <cmath>
 
 #include "engine/machine_peak.h"
@@ -32,6 +32,21 @@ TEST_F(MachinePeakTest, MeasuresAPositiveRate) {
   EXPECT_TRUE(std::isfinite(peak.gflops));
   EXPECT_GT(peak.gflops, 0.0);
   EXPECT_EQ(peak.flops, uint64_t{1u << 12} * 256 * 8 * 2);
+}
+
+TEST_F(MachinePeakTest, CopyKernelCopiesEveryElement) {
+  // 1000 vec4s: not a multiple of the group size, so the bounds check is exercised too.
+  std::vector<glm::vec4> source(1000);
+  for (size_t i = 0; i < source.size(); ++i)
+    source[i] = glm::vec4(float(i), -float(i), 0.5f, 1e30f);
+  EXPECT_EQ(engine::runBandwidthPeakKernel(ctx(), source), source);
+}
+
+TEST_F(MachinePeakTest, MeasuresAPositiveBandwidth) {
+  const engine::BandwidthPeak peak = engine::measureBandwidthPeak(ctx(), 4, 2);
+  EXPECT_TRUE(std::isfinite(peak.gbPerSecond));
+  EXPECT_GT(peak.gbPerSecond, 0.0);
+  EXPECT_EQ(peak.bytes, uint64_t{2} << 22);
 }
 
 }  // namespace
