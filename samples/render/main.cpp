@@ -24,6 +24,7 @@
 #include "gi/indirect_lighting.h"
 #include "gi_host.h"
 #include "options.h"
+#include "pass_table.h"
 #include "program_exit.h"
 #include "scene_files.h"
 
@@ -74,12 +75,13 @@ int run(const render::Options& o) {
   engine::initialLayout(ctx, radiance, VK_IMAGE_LAYOUT_GENERAL);
 
   std::unique_ptr<gi::IndirectLighting> indirect;
-  const engine::Light* bouncing = render::bouncingLight(scene);
-  if (o.indirect && bouncing) indirect = render::createIndirect(ctx, o, gpuScene, scene);
+  const engine::Light* bouncing = samples::bouncingLight(scene);
+  if (o.indirect && bouncing)
+    indirect = samples::createIndirect(ctx, o.gi, o.width, o.height, gpuScene, scene);
   if (o.indirect && !bouncing)
     std::printf("indirect: skipped, the scene has no spot or directional light to bounce\n");
   gi::FrameInput input;
-  if (indirect) input = render::frameInput(gbuffer, view, *bouncing);
+  if (indirect) input = samples::frameInput(gbuffer, view, *bouncing);
 
   engine::GpuProfiler profiler(ctx);
   render::PassTable passTimes;
@@ -92,7 +94,7 @@ int run(const render::Options& o) {
                         &profiler);
       resolve.record(cmd, gpuScene, visibility, view, gbuffer, &profiler);
       direct.record(cmd, gpuScene, rasterizer, gbuffer, view, radiance, &profiler);
-      if (indirect) render::check(indirect->record(cmd, input, &output));
+      if (indirect) samples::check(indirect->record(cmd, input, &output));
     });
     if (frame < o.warmup) continue;  // lavapipe compiles pipelines at their first dispatch
     for (const auto& pass : profiler.results()) passTimes.add(pass.name, pass.ms, pass.dispatches);
@@ -106,23 +108,22 @@ int run(const render::Options& o) {
   const engine::FmaPeak peak = engine::measureFmaPeak(ctx);
   std::printf("device FMA peak (measured now): %.1f GFLOP/s\n", peak.gflops);
   const engine::BandwidthPeak bandwidth = engine::measureBandwidthPeak(ctx);
-  std::printf("device memory bandwidth (copy, measured now): %.1f GB/s\n",
-              bandwidth.gbPerSecond);
+  std::printf("device memory bandwidth (copy, measured now): %.1f GB/s\n", bandwidth.gbPerSecond);
 
   std::string base = (std::filesystem::path(o.outDir) / stem).string();
   // Built-in scenes exist only as code; a .gltf copy lets other tools open the same scene.
   if (samples::isBuiltinScene(o.scene)) engine::writeGltf(scene, base + ".gltf");
-  engine::ImageRgba32f image = render::readRadiance(ctx, radiance);
+  engine::ImageRgba32f image = samples::readRadiance(ctx, radiance);
   engine::ToneMapSettings toneMap{o.exposureEv};
   if (indirect) {
-    render::Indirect result = render::readIndirect(ctx, output, o.width, o.height);
-    render::addInto(image, result.diffuse);
-    render::addInto(image, result.glossy);
+    samples::Indirect result = samples::readIndirect(ctx, output, o.width, o.height);
+    samples::addInto(image, result.diffuse);
+    samples::addInto(image, result.glossy);
     engine::ImageRgba32f only = result.diffuse;
-    render::addInto(only, result.glossy);
+    samples::addInto(only, result.glossy);
     samples::writePair(base + "_indirect", only, toneMap);
     std::vector<uint8_t> frameRgba = engine::toneMap(image, toneMap);
-    std::vector<gpu::Vsgl> vsgls = render::readVsgls(ctx, output);
+    std::vector<gpu::Vsgl> vsgls = samples::readVsgls(ctx, output);
     engine::writePng(
         base + "_vsgls.png", image.width, image.height,
         render::drawVsglLobes(frameRgba, image.width, image.height, vsgls, view.viewProj));
@@ -131,11 +132,11 @@ int run(const render::Options& o) {
       const uint32_t k = o.debugVsgl >= 0 ? uint32_t(o.debugVsgl) : render::brightestVsgl(vsgls);
       gi::Settings debug = indirect->settings();
       debug.debugVsgl = int32_t(k);
-      render::check(indirect->setSettings(debug));
+      samples::check(indirect->setSettings(debug));
       ctx.submitAndWait(
-          [&](VkCommandBuffer cmd) { render::check(indirect->record(cmd, input, &output)); });
+          [&](VkCommandBuffer cmd) { samples::check(indirect->record(cmd, input, &output)); });
       engine::writePng(base + "_visibility.png", image.width, image.height,
-                       render::greyscale(render::readVisibility(ctx, output, o.width, o.height)));
+                       render::greyscale(samples::readVisibility(ctx, output, o.width, o.height)));
       std::printf("wrote %s_visibility.png (ISM visibility of VSGL %u)\n", base.c_str(), k);
     }
   }

@@ -1,9 +1,8 @@
-// How the sample renderer, as a host, talks to the module's public API: its engine resources
+// How the sample programs, as hosts, talk to the module's public API: its engine resources
 // become the API's plain handles, the module's outputs come back as images, and the pass times
-// of both are tabulated. Nothing here reaches behind gi/include.
+// Nothing here reaches behind gi/include.
 #pragma once
 
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,10 +13,9 @@
 #include "engine/tonemap.h"
 #include "engine/view.h"
 #include "gi/indirect_lighting.h"
-#include "options.h"
 #include "shared/vsgl.h"
 
-namespace render {
+namespace samples {
 
 // Throws engine::Error with the status's message when it failed.
 void check(const gi::Status& status);
@@ -26,7 +24,10 @@ void check(const gi::Status& status);
 // support point lights yet), or null.
 const engine::Light* bouncingLight(const engine::Scene& scene);
 
-std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx, const Options& o,
+// The module on `ctx`'s device for a width x height G-buffer, with `scene`'s geometry set.
+std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
+                                                     const gi::Settings& settings, uint32_t width,
+                                                     uint32_t height,
                                                      const engine::SceneGpu& gpuScene,
                                                      const engine::Scene& scene);
 
@@ -47,18 +48,4 @@ std::vector<float> readVisibility(engine::Context& ctx, const gi::FrameOutput& o
 
 void addInto(engine::ImageRgba32f& sum, const engine::ImageRgba32f& term);
 
-// Per-pass GPU times over the measured frames, printed as medians.
-class PassTable {
- public:
-  // One frame's time of a pass and the compute dispatches it recorded.
-  void add(const std::string& name, double ms, uint32_t dispatches);
-  // With the VSGL count and pixel count, the shading pass is also given per pixel-VSGL pair.
-  void print(uint32_t frames, uint32_t vsglCount, uint32_t pixels) const;
-
- private:
-  std::vector<std::string> order_;
-  std::map<std::string, std::vector<double>> times_;
-  std::map<std::string, uint32_t> dispatches_;  // the last frame's
-};
-
-}  // namespace render
+}  // namespace samples

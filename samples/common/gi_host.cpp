@@ -3,9 +3,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "engine/profiler.h"
-
-namespace render {
+namespace samples {
 
 void check(const gi::Status& status) {
   if (!status) throw engine::Error(status.message);
@@ -18,13 +16,15 @@ const engine::Light* bouncingLight(const engine::Scene& scene) {
   return nullptr;
 }
 
-std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx, const Options& o,
+std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
+                                                     const gi::Settings& settings, uint32_t width,
+                                                     uint32_t height,
                                                      const engine::SceneGpu& gpuScene,
                                                      const engine::Scene& scene) {
   gi::Status status;
   auto lighting = gi::IndirectLighting::create(
-      {ctx.instance(), ctx.physicalDevice(), ctx.device(), ctx.queueFamily()}, o.gi, o.width,
-      o.height, &status);
+      {ctx.instance(), ctx.physicalDevice(), ctx.device(), ctx.queueFamily()}, settings, width,
+      height, &status);
   check(status);
   gi::SceneGeometry geometry;
   geometry.vertices = gpuScene.vertices.handle();
@@ -128,22 +128,4 @@ void addInto(engine::ImageRgba32f& sum, const engine::ImageRgba32f& term) {
     if (i % 4 != 3) sum.pixels[i] += term.pixels[i];
 }
 
-void PassTable::add(const std::string& name, double ms, uint32_t dispatches) {
-  if (!times_.count(name)) order_.push_back(name);
-  times_[name].push_back(ms);
-  dispatches_[name] = dispatches;
-}
-
-void PassTable::print(uint32_t frames, uint32_t vsglCount, uint32_t pixels) const {
-  std::printf("GPU time per pass, median of %u frames (ms), and compute dispatches per frame:\n",
-              frames);
-  for (const auto& name : order_) {
-    const double ms = engine::median(times_.at(name));
-    std::printf("  %-34s %9.3f %5u", name.c_str(), ms, dispatches_.at(name));
-    if (name == "gi vsgl shading" && vsglCount > 0)
-      std::printf("   (%.2f ns per pixel-VSGL pair)", ms * 1e6 / (double(vsglCount) * pixels));
-    std::printf("\n");
-  }
-}
-
-}  // namespace render
+}  // namespace samples

@@ -1,0 +1,311 @@
+// vsgl_benchmark: what accuracy costs in time. For every scene x method x VSGL count x K of a
+// preset it renders frames through the public API (as vsgl_render does), times every pass
+// (median, 5th and 95th percentile over the measured frames), scores the indirect light against
+// the path-traced reference (gi/truth, cached), and writes one JSON record per row plus
+// benchmark.json and benchmark.csv. Each finished row is stored at once under <out>/rows, so an
+// interrupted run resumes where it stopped. docs/benchmarks.md explains the output.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_values.h"
+#include "engine/gbuffer.h"
+#include "engine/image_metrics.h"
+#include "engine/machine_peak.h"
+#include "engine/rasterizer.h"
+#include "gi_host.h"
+#include "path_tracer.h"
+#include "presets.h"
+#include "program_exit.h"
+#include "reference_cache.h"
+#include "scene_files.h"
+
+namespace {
+
+using nlohmann::json;
+
+struct Options {
+  std::string preset = "ci";
+  std::string outDir = "bench";
+  std::string device;
+  bool validation = false;
+  bool help = false;
+};
+
+const char* usage() {
+  return "usage: vsgl_benchmark [options]\n"
+         "  --preset NAME   ci (seconds; the test suite's smoke run), default or paper\n"
+         "  --out DIR       output directory (default bench): benchmark.json, benchmark.csv,\n"
+         "                  rows/ (one record per finished row: a rerun resumes) and cache/\n"
+         "                  (path-traced references)\n"
+         "  --device SEL    Vulkan device index or name substring\n"
+         "  --validation    enable the Khronos validation layer\n";
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  for (samples::Arguments args(argc, argv); args.next();) {
+    const std::string_view arg = args.option();
+    if (arg == "--preset")
+      o.preset = args.value();
+    else if (arg == "--out")
+      o.outDir = args.value();
+    else if (arg == "--device")
+      o.device = args.value();
+    else if (arg == "--validation")
+      o.validation = true;
+    else if (arg == "--help" || arg == "-h")
+      o.help = true;
+    else
+      throw engine::Error(std::string(arg) + ": unknown option (see --help)");
+  }
+  if (o.outDir.empty()) throw engine::Error("--out: empty path");
+  return o;
+}
+
+// The q-quantile (0..1) of `values` by linear interpolation between order statistics.
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double x = q * double(values.size() - 1);
+  const auto i = static_cast<size_t>(x);
+  const size_t j = std::min(i + 1, values.size() - 1);
+  return values[i] + (x - double(i)) * (values[j] - values[i]);
+}
+
+gi::Settings settingsFor(const bench::Preset& p, const std::string& method, uint32_t count,
+                         float k) {
+  gi::Settings s;
+  s.rsmSize = p.rsmSize;
+  s.vsglCount = count;
+  s.kernelScale = k;
+  s.brsm.importanceCount = p.importanceCount;
+  s.brsm.gridSize = std::min(s.brsm.gridSize, p.rsmSize);
+  if (method == "tok15") s.rule = gi::KernelRule::Tok15;
+  if (method == "kmeans-2d") s.method = gi::VsglMethod::KmeansImage;
+  if (method == "kmeans-3d") s.method = gi::VsglMethod::KmeansWorld;
+  if (std::string bad = gi::validateSettings(s); !bad.empty()) throw engine::Error(bad);
+  return s;
+}
+
+// FNV-1a of a row's identity: its file name under rows/.
+std::string rowKey(const json& identity) {
+  uint64_t h = 1469598103934665603ull;
+  for (char c : identity.dump()) h = (h ^ uint8_t(c)) * 1099511628211ull;
+  char name[17];
+  std::snprintf(name, sizeof(name), "%016llx", static_cast<unsigned long long>(h));
+  return name;
+}
+
+double peakResidentMegabytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+// One scene's fixed inputs: its G-buffer (rendered once) and the path-traced reference.
+struct SceneRun {
+  engine::Scene scene;
+  engine::View view;
+  const engine::Light* light = nullptr;
+  std::unique_ptr<engine::SceneGpu> gpuScene;
+  std::unique_ptr<engine::GBuffer> gbuffer;
+  std::vector<glm::dvec3> reference;  // path-traced indirect light
+};
+
+SceneRun prepareScene(engine::Context& ctx, const bench::Preset& p, const std::string& name,
+                      const truth::ReferenceCache& cache) {
+  SceneRun r;
+  r.scene = samples::loadScene(name);
+  r.view = samples::sceneView(r.scene, p.width, p.height);
+  r.light = samples::bouncingLight(r.scene);
+  if (!r.light) throw engine::Error(name + ": no spot or directional light to bounce");
+  r.gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, r.scene));
+  r.gbuffer = std::make_unique<engine::GBuffer>(engine::createGBuffer(ctx, p.width, p.height));
+  engine::Rasterizer rasterizer(ctx);
+  engine::GBufferResolve resolve(ctx);
+  engine::Buffer visibility(ctx, engine::Rasterizer::visibilityBytes(p.width, p.height),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    rasterizer.record(cmd, *r.gpuScene, r.view.viewProj, {&visibility, 0, p.width, p.height});
+    resolve.record(cmd, *r.gpuScene, visibility, r.view, *r.gbuffer);
+  });
+  truth::PathTraceSettings trace;
+  trace.relativeError = p.referenceNoise;
+  trace.progress = true;
+  bool fromCache = false;
+  const auto lightIndex = static_cast<uint32_t>(r.light - r.scene.lights.data());
+  const truth::PathTraceImage image =
+      truth::cachedPathTrace(cache, r.scene, r.view, lightIndex, trace, &fromCache);
+  std::printf("%s: reference %s (%.1f s to trace)\n", name.c_str(),
+              fromCache ? "from the cache" : "traced", image.seconds);
+  r.reference.resize(image.diffuse.size());
+  for (size_t i = 0; i < r.reference.size(); ++i)
+    r.reference[i] = image.diffuse[i] + image.glossy[i];
+  return r;
+}
+
+json runRow(engine::Context& ctx, const bench::Preset& p, SceneRun& s,
+            const gi::Settings& settings) {
+  auto lighting = samples::createIndirect(ctx, settings, p.width, p.height, *s.gpuScene, s.scene);
+  const gi::FrameInput input = samples::frameInput(*s.gbuffer, s.view, *s.light);
+  gi::FrameOutput output;
+  std::map<std::string, std::vector<double>> times;
+  std::map<std::string, uint32_t> dispatches;
+  std::vector<std::string> order;
+  for (uint32_t frame = 0; frame < p.warmup + p.frames; ++frame) {
+    ctx.submitAndWait(
+        [&](VkCommandBuffer cmd) { samples::check(lighting->record(cmd, input, &output)); });
+    if (frame < p.warmup) continue;  // the first frame compiles the pipelines
+    for (const gi::PassTime& t : lighting->lastFrameTimes()) {
+      if (!times.count(t.name)) order.push_back(t.name);
+      times[t.name].push_back(t.ms);
+      dispatches[t.name] = t.dispatches;
+    }
+  }
+  json passes = json::array();
+  for (const std::string& name : order)
+    passes.push_back({{"name", name},
+                      {"median_ms", quantile(times[name], 0.5)},
+                      {"p5_ms", quantile(times[name], 0.05)},
+                      {"p95_ms", quantile(times[name], 0.95)},
+                      {"dispatches", dispatches[name]}});
+  const samples::Indirect indirect = samples::readIndirect(ctx, output, p.width, p.height);
+  std::vector<glm::dvec3> image(s.reference.size());
+  for (size_t i = 0; i < image.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      image[i][c] = double(indirect.diffuse.pixels[4 * i + c]) + indirect.glossy.pixels[4 * i + c];
+  const engine::ErrorMetrics e = engine::compareImages(image, s.reference);
+  return {{"passes", passes},
+          {"error",
+           {{"rmse", e.rmse},
+            {"rmse_of_mean", e.referenceMean > 0.0 ? e.rmse / e.referenceMean : 0.0},
+            {"relative_mse", e.relativeMse},
+            {"psnr_db", e.psnr},
+            {"non_finite_pixels", e.nonFinite},
+            {"reference",
+             "path tracer, " + std::to_string(p.referenceNoise) + " relative standard error"}}},
+          {"peak_resident_mb", peakResidentMegabytes()}};
+}
+
+double passMedian(const json& row, const std::string& name) {
+  for (const json& pass : row["passes"])
+    if (pass["name"] == name) return pass["median_ms"];
+  return 0.0;
+}
+
+// The VSGL stage: filtered sampling, or every k-means pass.
+double generationMs(const json& row) {
+  double ms = passMedian(row, "filtered sampling");
+  for (const json& pass : row["passes"])
+    if (pass["name"].get<std::string>().rfind("k-means", 0) == 0)
+      ms += pass["median_ms"].get<double>();
+  return ms;
+}
+
+void writeOutputs(const std::filesystem::path& dir, const json& machine, const json& rows) {
+  std::ofstream(dir / "benchmark.json")
+      << json{{"machine", machine}, {"rows", rows}}.dump(2) << "\n";
+  std::ofstream csv(dir / "benchmark.csv");
+  csv << "scene,method,count,k,frame_median_ms,frame_p5_ms,frame_p95_ms,generation_ms,"
+         "shading_ms,rmse_of_mean,relative_mse,psnr_db,peak_resident_mb\n";
+  for (const json& r : rows) {
+    double p5 = 0.0, p95 = 0.0;
+    for (const json& pass : r["passes"])
+      if (pass["name"] == "frame") {
+        p5 = pass["p5_ms"];
+        p95 = pass["p95_ms"];
+      }
+    csv << r["scene"].get<std::string>() << "," << r["method"].get<std::string>() << ","
+        << r["count"] << "," << r["k"] << "," << passMedian(r, "frame") << "," << p5 << "," << p95
+        << "," << generationMs(r) << "," << passMedian(r, "vsgl shading") << ","
+        << r["error"]["rmse_of_mean"] << "," << r["error"]["relative_mse"] << ","
+        << r["error"]["psnr_db"] << "," << r["peak_resident_mb"] << "\n";
+  }
+}
+
+int run(const Options& o) {
+  if (o.help) {
+    std::printf("%s", usage());
+    return 0;
+  }
+  const bench::Preset p = bench::preset(o.preset);
+  const std::filesystem::path out(o.outDir);
+  samples::createOutputDirectory(o.outDir);
+  samples::createOutputDirectory((out / "rows").string());
+  const truth::ReferenceCache cache((out / "cache").string());
+  engine::Context ctx({o.validation, o.device});
+  const json machine = {{"device", ctx.info().name},
+                        {"driver", ctx.info().driver},
+                        {"revision", VSGL_REVISION},
+                        {"fma_peak_gflops", engine::measureFmaPeak(ctx).gflops},
+                        {"copy_bandwidth_gbs", engine::measureBandwidthPeak(ctx).gbPerSecond}};
+  std::printf("device: %s (%s), revision %s; FMA peak %.1f GFLOP/s, copy bandwidth %.1f GB/s\n",
+              ctx.info().name.c_str(), ctx.info().driver.c_str(), VSGL_REVISION,
+              machine["fma_peak_gflops"].get<double>(),
+              machine["copy_bandwidth_gbs"].get<double>());
+
+  json rows = json::array();
+  size_t total = 0, done = 0;
+  for (const std::string& method : p.methods)
+    total += p.counts.size() * (method.rfind("kmeans", 0) == 0 ? 1 : p.kernelScales.size());
+  total *= p.scenes.size();
+  for (const std::string& sceneName : p.scenes) {
+    std::optional<SceneRun> scene;  // prepared at its first row that is not cached
+    for (const std::string& method : p.methods)
+      for (uint32_t count : p.counts)
+        for (float k : p.kernelScales) {
+          if (method.rfind("kmeans", 0) == 0 && k != p.kernelScales.front()) continue;
+          const json identity = {{"preset", p.name},
+                                 {"scene", sceneName},
+                                 {"method", method},
+                                 {"count", count},
+                                 {"k", k},
+                                 {"width", p.width},
+                                 {"height", p.height},
+                                 {"rsm", p.rsmSize},
+                                 {"frames", p.frames},
+                                 {"warmup", p.warmup},
+                                 {"reference_noise", p.referenceNoise},
+                                 {"device", ctx.info().name},
+                                 {"revision", VSGL_REVISION}};
+          const std::filesystem::path file = out / "rows" / (rowKey(identity) + ".json");
+          ++done;
+          json row;
+          if (std::ifstream in(file); in) row = json::parse(in, nullptr, false);
+          if (row.is_discarded() || !row.is_object() || row.value("identity", json()) != identity) {
+            if (!scene) scene = prepareScene(ctx, p, sceneName, cache);
+            row = runRow(ctx, p, *scene, settingsFor(p, method, count, k));
+            row["identity"] = identity;
+            const std::filesystem::path partial = file.string() + ".partial";
+            std::ofstream(partial) << row.dump(2) << "\n";
+            std::filesystem::rename(partial, file);  // a row file is complete or absent
+          }
+          json flat = identity;
+          for (auto& [key, value] : row.items())
+            if (key != "identity") flat[key] = value;
+          std::printf(
+              "[%zu/%zu] %s %s N=%u K=%g: frame %.1f ms, generation %.2f ms, RMSE %.1f %% of "
+              "mean\n",
+              done, total, sceneName.c_str(), method.c_str(), count, double(k),
+              passMedian(flat, "frame"), generationMs(flat),
+              100.0 * flat["error"]["rmse_of_mean"].get<double>());
+          std::fflush(stdout);
+          rows.push_back(flat);
+        }
+  }
+  writeOutputs(out, machine, rows);
+  std::printf("wrote %s and %s\n", (out / "benchmark.json").c_str(),
+              (out / "benchmark.csv").c_str());
+  return samples::validationExitStatus(ctx, "vsgl_benchmark");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return samples::guardedMain("vsgl_benchmark", [&] { return run(parseOptions(argc, argv)); });
+}

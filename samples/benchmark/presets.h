@@ -1,0 +1,28 @@
+// The benchmark's presets (docs/benchmarks.md): which scenes, methods, VSGL counts and kernel
+// scales it runs, at what size, and how converged the path-traced reference is.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bench {
+
+struct Preset {
+  std::string name;
+  std::vector<std::string> scenes;
+  std::vector<std::string> methods;  // vsgl_render --method names
+  std::vector<uint32_t> counts;      // VSGLs N
+  std::vector<float> kernelScales;   // K (filtered methods only; k-means has none)
+  uint32_t width = 0, height = 0;
+  uint32_t rsmSize = 0;
+  uint32_t importanceCount = 0;  // BRSM importance VSGLs
+  uint32_t warmup = 1, frames = 3;
+  double referenceNoise = 0.03;  // the path tracer's relative standard-error target
+};
+
+// "ci" (a smoke run, well under 2 minutes), "default" or "paper"; throws engine::Error naming
+// the known presets otherwise.
+Preset preset(const std::string& name);
+
+}  // namespace bench
