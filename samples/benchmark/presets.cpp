@@ -8,13 +8,44 @@ Preset preset(const std::string& name) {
   const std::vector<std::string> allMethods = {"tok15", "modified", "kmeans-2d", "kmeans-3d"};
   const std::vector<std::string> allScenes = {"cornell", "checker", "atrium"};
   if (name == "ci")  // one small scene: checks that every method runs and scores, not speed
-    return {"ci", {"cornell"}, allMethods, {16, 32}, {1.0f}, 32, 18, 64, 256, 1, 2, 0.05};
+    return {.name = "ci",
+            .scenes = {"cornell"},
+            .methods = allMethods,
+            .counts = {16, 32},
+            .kernelScales = {1.0f},
+            .width = 32,
+            .height = 18,
+            .rsmSize = 64,
+            .importanceCount = 256,
+            .warmup = 1,
+            .frames = 2,
+            .referenceNoise = 0.05f};
   if (name == "default")  // vsgl_render's defaults, swept over N and K
-    return {"default",    allScenes, allMethods, {64, 128, 256, 512},
-            {1.0f, 4.0f}, 640,       360,        256,
-            2048,         1,         3,          0.03};
+    return {.name = "default",
+            .scenes = allScenes,
+            .methods = allMethods,
+            .counts = {64, 128, 256, 512},
+            .kernelScales = {1.0f, 4.0f},
+            .width = 640,
+            .height = 360,
+            .rsmSize = 256,
+            .importanceCount = 2048,
+            .warmup = 1,
+            .frames = 3,
+            .referenceNoise = 0.03f};
   if (name == "paper")  // [S3]'s setting: 1920x1088, RSM 512^2, 1024 VSGLs, 2048 importance
-    return {"paper", allScenes, allMethods, {1024}, {1.0f}, 1920, 1088, 512, 2048, 1, 3, 0.03};
+    return {.name = "paper",
+            .scenes = allScenes,
+            .methods = allMethods,
+            .counts = {1024},
+            .kernelScales = {1.0f},
+            .width = 1920,
+            .height = 1088,
+            .rsmSize = 512,
+            .importanceCount = 2048,
+            .warmup = 1,
+            .frames = 3,
+            .referenceNoise = 0.03f};
   throw engine::Error("--preset: '" + name + "' is not one of ci, default, paper");
 }
 

@@ -18,7 +18,9 @@ struct Preset {
   uint32_t rsmSize = 0;
   uint32_t importanceCount = 0;  // BRSM importance VSGLs
   uint32_t warmup = 1, frames = 3;
-  double referenceNoise = 0.03;  // the path tracer's relative standard-error target
+  // The path tracer's relative standard-error target. A float, as vsgl_reference parses it, so
+  // both programs key the same reference in a shared cache.
+  float referenceNoise = 0.03f;
 };
 
 // "ci" (a smoke run, well under 2 minutes), "default" or "paper"; throws engine::Error naming
