@@ -12,6 +12,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev      # glTF scenes
   libopenimageio-dev                      # EXR / PNG / texture I/O
   libembree-dev                           # ray tracing for the CPU ground truth (gi/truth)
+  gnuplot-nox                             # the benchmark's charts (scripts/bench_charts.sh)
   libgtest-dev                            # tests
 )
 

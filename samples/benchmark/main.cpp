@@ -226,6 +226,16 @@ void writeOutputs(const std::filesystem::path& dir, const json& machine, const j
         << r["error"]["rmse_of_mean"] << "," << r["error"]["relative_mse"] << ","
         << r["error"]["psnr_db"] << "," << r["peak_resident_mb"] << "\n";
   }
+  // Long format, one line per row and pass (the frame total left out): the stacked bars' input.
+  std::ofstream passes(dir / "benchmark_passes.csv");
+  passes << "scene,method,count,k,pass,median_ms,p5_ms,p95_ms,dispatches\n";
+  for (const json& r : rows)
+    for (const json& pass : r["passes"])
+      if (pass["name"] != "frame")
+        passes << r["scene"].get<std::string>() << "," << r["method"].get<std::string>() << ","
+               << r["count"] << "," << r["k"] << "," << pass["name"].get<std::string>() << ","
+               << pass["median_ms"] << "," << pass["p5_ms"] << "," << pass["p95_ms"] << ","
+               << pass["dispatches"] << "\n";
 }
 
 int run(const Options& o) {
@@ -299,8 +309,9 @@ int run(const Options& o) {
         }
   }
   writeOutputs(out, machine, rows);
-  std::printf("wrote %s and %s\n", (out / "benchmark.json").c_str(),
-              (out / "benchmark.csv").c_str());
+  std::printf(
+      "wrote %s, benchmark.csv and benchmark_passes.csv (charts: scripts/bench_charts.sh %s)\n",
+      (out / "benchmark.json").c_str(), o.outDir.c_str());
   return samples::validationExitStatus(ctx, "vsgl_benchmark");
 }
 
