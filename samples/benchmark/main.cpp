@@ -23,6 +23,7 @@
 #include "program_exit.h"
 #include "reference_cache.h"
 #include "scene_files.h"
+#include "vpl_gather.h"
 
 namespace {
 
@@ -112,6 +113,7 @@ struct SceneRun {
   engine::Scene scene;
   engine::View view;
   const engine::Light* light = nullptr;
+  uint32_t lightIndex = 0;  // of `light` in scene.lights
   std::unique_ptr<engine::SceneGpu> gpuScene;
   std::unique_ptr<engine::GBuffer> gbuffer;
   std::vector<glm::dvec3> reference;  // path-traced indirect light
@@ -138,15 +140,27 @@ SceneRun prepareScene(engine::Context& ctx, const bench::Preset& p, const std::s
   trace.relativeError = p.referenceNoise;
   trace.progress = true;
   bool fromCache = false;
-  const auto lightIndex = static_cast<uint32_t>(r.light - r.scene.lights.data());
+  r.lightIndex = static_cast<uint32_t>(r.light - r.scene.lights.data());
   const truth::PathTraceImage image =
-      truth::cachedPathTrace(cache, r.scene, r.view, lightIndex, trace, &fromCache);
+      truth::cachedPathTrace(cache, r.scene, r.view, r.lightIndex, trace, &fromCache);
   std::printf("%s: reference %s (%.1f s to trace)\n", name.c_str(),
               fromCache ? "from the cache" : "traced", image.seconds);
   r.reference.resize(image.diffuse.size());
   for (size_t i = 0; i < r.reference.size(); ++i)
     r.reference[i] = image.diffuse[i] + image.glossy[i];
   return r;
+}
+
+json errorRecord(const std::vector<glm::dvec3>& image, const std::vector<glm::dvec3>& reference,
+                 const bench::Preset& p) {
+  const engine::ErrorMetrics e = engine::compareImages(image, reference);
+  return {{"rmse", e.rmse},
+          {"rmse_of_mean", e.referenceMean > 0.0 ? e.rmse / e.referenceMean : 0.0},
+          {"relative_mse", e.relativeMse},
+          {"psnr_db", e.psnr},
+          {"non_finite_pixels", e.nonFinite},
+          {"reference",
+           "path tracer, " + std::to_string(p.referenceNoise) + " relative standard error"}};
 }
 
 json runRow(engine::Context& ctx, const bench::Preset& p, SceneRun& s,
@@ -179,16 +193,27 @@ json runRow(engine::Context& ctx, const bench::Preset& p, SceneRun& s,
   for (size_t i = 0; i < image.size(); ++i)
     for (int c = 0; c < 3; ++c)
       image[i][c] = double(indirect.diffuse.pixels[4 * i + c]) + indirect.glossy.pixels[4 * i + c];
-  const engine::ErrorMetrics e = engine::compareImages(image, s.reference);
   return {{"passes", passes},
-          {"error",
-           {{"rmse", e.rmse},
-            {"rmse_of_mean", e.referenceMean > 0.0 ? e.rmse / e.referenceMean : 0.0},
-            {"relative_mse", e.relativeMse},
-            {"psnr_db", e.psnr},
-            {"non_finite_pixels", e.nonFinite},
-            {"reference",
-             "path tracer, " + std::to_string(p.referenceNoise) + " relative standard error"}}},
+          {"error", errorRecord(image, s.reference, p)},
+          {"peak_resident_mb", peakResidentMegabytes()}};
+}
+
+// The brute-force VPL gather over an rsm^2 RSM (gi/truth/vpl_gather.h) as a row: its CPU wall
+// time stands in for the frame, so the charts place what VSGLs approximate beside them.
+json runVplRow(const bench::Preset& p, SceneRun& s, uint32_t rsm) {
+  const truth::EmbreeScene rays(s.scene);
+  const std::vector<truth::Vpl> vpls = truth::rsmVpls(s.scene, rays, s.lightIndex, rsm);
+  const truth::VplGatherImage g = truth::vplGather(s.scene, rays, s.view, vpls);
+  std::vector<glm::dvec3> image(g.diffuse.size());
+  for (size_t i = 0; i < image.size(); ++i) image[i] = g.diffuse[i] + g.glossy[i];
+  const double ms = 1e3 * g.seconds;
+  json passes = json::array();
+  for (const char* name : {"frame", "vpl gather (CPU)"})
+    passes.push_back(
+        {{"name", name}, {"median_ms", ms}, {"p5_ms", ms}, {"p95_ms", ms}, {"dispatches", 0}});
+  return {{"passes", passes},
+          {"error", errorRecord(image, s.reference, p)},
+          {"vpl_count", g.vplCount},
           {"peak_resident_mb", peakResidentMegabytes()}};
 }
 
@@ -312,54 +337,65 @@ int run(const Options& o) {
               machine["fma_peak_gflops"].get<double>(),
               machine["copy_bandwidth_gbs"].get<double>());
 
-  json rows = json::array();
-  size_t total = 0, done = 0;
+  // The rows of one scene: every method at every count (and K, for the filtered ones), then
+  // the VPL gather at each of its RSM sizes (count = RSM side, k = 0).
+  struct RowSpec {
+    std::string method;
+    uint32_t count;
+    float k;
+  };
+  std::vector<RowSpec> specs;
   for (const std::string& method : p.methods)
-    total += p.counts.size() * (method.rfind("kmeans", 0) == 0 ? 1 : p.kernelScales.size());
-  total *= p.scenes.size();
+    for (uint32_t count : p.counts)
+      for (float k : p.kernelScales)
+        if (method.rfind("kmeans", 0) != 0 || k == p.kernelScales.front())
+          specs.push_back({method, count, k});
+  for (uint32_t rsm : p.vplRsmSizes) specs.push_back({"vpl-gather", rsm, 0.0f});
+
+  json rows = json::array();
+  const size_t total = specs.size() * p.scenes.size();
+  size_t done = 0;
   for (const std::string& sceneName : p.scenes) {
     std::optional<SceneRun> scene;  // prepared at its first row that is not cached
-    for (const std::string& method : p.methods)
-      for (uint32_t count : p.counts)
-        for (float k : p.kernelScales) {
-          if (method.rfind("kmeans", 0) == 0 && k != p.kernelScales.front()) continue;
-          const json identity = {{"preset", p.name},
-                                 {"scene", sceneName},
-                                 {"method", method},
-                                 {"count", count},
-                                 {"k", k},
-                                 {"width", p.width},
-                                 {"height", p.height},
-                                 {"rsm", p.rsmSize},
-                                 {"frames", p.frames},
-                                 {"warmup", p.warmup},
-                                 {"reference_noise", p.referenceNoise},
-                                 {"device", ctx.info().name},
-                                 {"revision", VSGL_REVISION}};
-          const std::filesystem::path file = out / "rows" / (rowKey(identity) + ".json");
-          ++done;
-          json row;
-          if (std::ifstream in(file); in) row = json::parse(in, nullptr, false);
-          if (row.is_discarded() || !row.is_object() || row.value("identity", json()) != identity) {
-            if (!scene) scene = prepareScene(ctx, p, sceneName, cache);
-            row = runRow(ctx, p, *scene, settingsFor(p, method, count, k));
-            row["identity"] = identity;
-            const std::filesystem::path partial = file.string() + ".partial";
-            std::ofstream(partial) << row.dump(2) << "\n";
-            std::filesystem::rename(partial, file);  // a row file is complete or absent
-          }
-          json flat = identity;
-          for (auto& [key, value] : row.items())
-            if (key != "identity") flat[key] = value;
-          std::printf(
-              "[%zu/%zu] %s %s N=%u K=%g: frame %.1f ms, generation %.2f ms, RMSE %.1f %% of "
-              "mean\n",
-              done, total, sceneName.c_str(), method.c_str(), count, double(k),
-              passMedian(flat, "frame"), generationMs(flat),
-              100.0 * flat["error"]["rmse_of_mean"].get<double>());
-          std::fflush(stdout);
-          rows.push_back(flat);
-        }
+    for (const RowSpec& spec : specs) {
+      const json identity = {{"preset", p.name},
+                             {"scene", sceneName},
+                             {"method", spec.method},
+                             {"count", spec.count},
+                             {"k", spec.k},
+                             {"width", p.width},
+                             {"height", p.height},
+                             {"rsm", spec.method == "vpl-gather" ? spec.count : p.rsmSize},
+                             {"frames", p.frames},
+                             {"warmup", p.warmup},
+                             {"reference_noise", p.referenceNoise},
+                             {"device", ctx.info().name},
+                             {"revision", VSGL_REVISION}};
+      const std::filesystem::path file = out / "rows" / (rowKey(identity) + ".json");
+      ++done;
+      json row;
+      if (std::ifstream in(file); in) row = json::parse(in, nullptr, false);
+      if (row.is_discarded() || !row.is_object() || row.value("identity", json()) != identity) {
+        if (!scene) scene = prepareScene(ctx, p, sceneName, cache);
+        row = spec.method == "vpl-gather"
+                  ? runVplRow(p, *scene, spec.count)
+                  : runRow(ctx, p, *scene, settingsFor(p, spec.method, spec.count, spec.k));
+        row["identity"] = identity;
+        const std::filesystem::path partial = file.string() + ".partial";
+        std::ofstream(partial) << row.dump(2) << "\n";
+        std::filesystem::rename(partial, file);  // a row file is complete or absent
+      }
+      json flat = identity;
+      for (auto& [key, value] : row.items())
+        if (key != "identity") flat[key] = value;
+      std::printf(
+          "[%zu/%zu] %s %s N=%u K=%g: frame %.1f ms, generation %.2f ms, RMSE %.1f %% of mean\n",
+          done, total, sceneName.c_str(), spec.method.c_str(), spec.count, double(spec.k),
+          passMedian(flat, "frame"), generationMs(flat),
+          100.0 * flat["error"]["rmse_of_mean"].get<double>());
+      std::fflush(stdout);
+      rows.push_back(flat);
+    }
   }
   writeOutputs(out, machine, rows);
   std::printf(

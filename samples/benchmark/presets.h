@@ -14,6 +14,9 @@ struct Preset {
   std::vector<std::string> methods;  // vsgl_render --method names
   std::vector<uint32_t> counts;      // VSGLs N
   std::vector<float> kernelScales;   // K (filtered methods only; k-means has none)
+  // RSM sides of the brute-force VPL gather rows (gi/truth, on the CPU: a row costs pixels x
+  // RSM texels visibility rays, so the sizes stay small); empty = no such rows.
+  std::vector<uint32_t> vplRsmSizes;
   uint32_t width = 0, height = 0;
   uint32_t rsmSize = 0;
   uint32_t importanceCount = 0;  // BRSM importance VSGLs
