@@ -22,6 +22,7 @@
 #include "presets.h"
 #include "program_exit.h"
 #include "reference_cache.h"
+#include "report.h"
 #include "scene_files.h"
 #include "vpl_gather.h"
 
@@ -217,105 +218,6 @@ json runVplRow(const bench::Preset& p, SceneRun& s, uint32_t rsm) {
           {"peak_resident_mb", peakResidentMegabytes()}};
 }
 
-double passMedian(const json& row, const std::string& name) {
-  for (const json& pass : row["passes"])
-    if (pass["name"] == name) return pass["median_ms"];
-  return 0.0;
-}
-
-// The VSGL stage: filtered sampling, or every k-means pass.
-double generationMs(const json& row) {
-  double ms = passMedian(row, "filtered sampling");
-  for (const json& pass : row["passes"])
-    if (pass["name"].get<std::string>().rfind("k-means", 0) == 0)
-      ms += pass["median_ms"].get<double>();
-  return ms;
-}
-
-// The targets per scene and VSGL count, from the K = 1 rows: modified FIS against the
-// faster k-means variant (generation time and relMSE) and against Tok15 (generation overhead),
-// and the shading cost per pixel-VSGL pair, also as FMAs at the measured peak.
-json targets(const json& machine, const json& rows) {
-  auto find = [&](const std::string& scene, const std::string& method,
-                  uint32_t count) -> const json* {
-    for (const json& r : rows)
-      if (r["scene"] == scene && r["method"] == method && r["count"] == count && r["k"] == 1.0)
-        return &r;
-    return nullptr;
-  };
-  json out = json::array();
-  for (const json& r : rows) {
-    if (r["method"] != "modified" || r["k"] != 1.0) continue;
-    const std::string scene = r["scene"];
-    const uint32_t n = r["count"];
-    json t = {{"scene", scene}, {"count", n}};
-    const double modified = generationMs(r);
-    const double pairs =
-        double(n) * double(r["width"].get<uint32_t>()) * double(r["height"].get<uint32_t>());
-    const double nsPerPair = passMedian(r, "vsgl shading") * 1e6 / pairs;
-    t["shading_ns_per_pair"] = nsPerPair;
-    t["shading_peak_fmas_per_pair"] = nsPerPair * machine["fma_peak_gflops"].get<double>() / 2.0;
-    if (const json* tok15 = find(scene, "tok15", n); tok15 && generationMs(*tok15) > 0.0)
-      t["modified_over_tok15_generation"] = modified / generationMs(*tok15);
-    const json* best = nullptr;
-    for (const char* m : {"kmeans-2d", "kmeans-3d"})
-      if (const json* k = find(scene, m, n); k && (!best || generationMs(*k) < generationMs(*best)))
-        best = k;
-    if (best && modified > 0.0) {
-      t["faster_kmeans"] = (*best)["method"];
-      t["kmeans_over_modified_generation"] = generationMs(*best) / modified;
-      t["kmeans_over_modified_frame"] = passMedian(*best, "frame") / passMedian(r, "frame");
-      t["modified_relative_mse"] = r["error"]["relative_mse"];
-      t["kmeans_relative_mse"] = (*best)["error"]["relative_mse"];
-    }
-    out.push_back(t);
-  }
-  return out;
-}
-
-void writeOutputs(const std::filesystem::path& dir, const json& machine, const json& rows) {
-  const json summary = targets(machine, rows);
-  for (const json& t : summary)
-    if (t.contains("kmeans_over_modified_generation"))
-      std::printf(
-          "%s N=%u: %s / modified FIS generation %.1fx (frame %.2fx), relMSE %.4f vs %.4f; "
-          "modified / Tok15 generation %.2f; shading %.0f ns per pair (%.0f FMAs at peak)\n",
-          t["scene"].get<std::string>().c_str(), t["count"].get<uint32_t>(),
-          t["faster_kmeans"].get<std::string>().c_str(),
-          t["kmeans_over_modified_generation"].get<double>(),
-          t["kmeans_over_modified_frame"].get<double>(), t["kmeans_relative_mse"].get<double>(),
-          t["modified_relative_mse"].get<double>(), t.value("modified_over_tok15_generation", 0.0),
-          t["shading_ns_per_pair"].get<double>(), t["shading_peak_fmas_per_pair"].get<double>());
-  std::ofstream(dir / "benchmark.json")
-      << json{{"machine", machine}, {"targets", summary}, {"rows", rows}}.dump(2) << "\n";
-  std::ofstream csv(dir / "benchmark.csv");
-  csv << "scene,method,count,k,frame_median_ms,frame_p5_ms,frame_p95_ms,generation_ms,"
-         "shading_ms,rmse_of_mean,relative_mse,psnr_db,peak_resident_mb\n";
-  for (const json& r : rows) {
-    double p5 = 0.0, p95 = 0.0;
-    for (const json& pass : r["passes"])
-      if (pass["name"] == "frame") {
-        p5 = pass["p5_ms"];
-        p95 = pass["p95_ms"];
-      }
-    csv << r["scene"].get<std::string>() << "," << r["method"].get<std::string>() << ","
-        << r["count"] << "," << r["k"] << "," << passMedian(r, "frame") << "," << p5 << "," << p95
-        << "," << generationMs(r) << "," << passMedian(r, "vsgl shading") << ","
-        << r["error"]["rmse_of_mean"] << "," << r["error"]["relative_mse"] << ","
-        << r["error"]["psnr_db"] << "," << r["peak_resident_mb"] << "\n";
-  }
-  // Long format, one line per row and pass (the frame total left out): the stacked bars' input.
-  std::ofstream passes(dir / "benchmark_passes.csv");
-  passes << "scene,method,count,k,pass,median_ms,p5_ms,p95_ms,dispatches\n";
-  for (const json& r : rows)
-    for (const json& pass : r["passes"])
-      if (pass["name"] != "frame")
-        passes << r["scene"].get<std::string>() << "," << r["method"].get<std::string>() << ","
-               << r["count"] << "," << r["k"] << "," << pass["name"].get<std::string>() << ","
-               << pass["median_ms"] << "," << pass["p5_ms"] << "," << pass["p95_ms"] << ","
-               << pass["dispatches"] << "\n";
-}
-
 int run(const Options& o) {
   if (o.help) {
     std::printf("%s", usage());
@@ -391,13 +293,13 @@ int run(const Options& o) {
       std::printf(
           "[%zu/%zu] %s %s N=%u K=%g: frame %.1f ms, generation %.2f ms, RMSE %.1f %% of mean\n",
           done, total, sceneName.c_str(), spec.method.c_str(), spec.count, double(spec.k),
-          passMedian(flat, "frame"), generationMs(flat),
+          bench::passMedian(flat, "frame"), bench::generationMs(flat),
           100.0 * flat["error"]["rmse_of_mean"].get<double>());
       std::fflush(stdout);
       rows.push_back(flat);
     }
   }
-  writeOutputs(out, machine, rows);
+  bench::writeReport(out, machine, rows);
   std::printf(
       "wrote %s, benchmark.csv and benchmark_passes.csv (charts: scripts/bench_charts.sh %s)\n",
       (out / "benchmark.json").c_str(), o.outDir.c_str());
