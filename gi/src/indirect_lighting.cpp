@@ -322,7 +322,8 @@ Status IndirectLighting::record(VkCommandBuffer cmd, const FrameInput& input, Fr
 
 std::vector<PassTime> IndirectLighting::lastFrameTimes() const {
   std::vector<PassTime> out;
-  for (const engine::PassTime& p : impl_->profiler.results(false)) out.push_back({p.name, p.ms, p.dispatches});
+  for (const engine::PassTime& p : impl_->profiler.results(false))
+    out.push_back({p.name, p.ms, p.dispatches});
   return out;
 }
 
