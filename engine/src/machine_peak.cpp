@@ -1,5 +1,7 @@
 #include "engine/machine_peak.h"
 
+#include <functional>
+
 #include "engine/buffer.h"
 #include "engine/commands.h"
 #include "engine/profiler.h"
@@ -48,22 +50,29 @@ struct CopyKernel {
   Buffer destination;
 };
 
-}  // namespace
-
-FmaPeak measureFmaPeak(Context& ctx, uint32_t threads, uint32_t iterations, uint32_t runs) {
-  Kernel kernel(ctx, threads);
+// Median GPU time of `record` over `runs` submissions, after one that compiles the pipeline.
+double medianKernelMs(Context& ctx, uint32_t runs,
+                      const std::function<void(VkCommandBuffer)>& record) {
   GpuProfiler profiler(ctx, 2);
   std::vector<double> times;
   for (uint32_t run = 0; run <= runs; ++run) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       profiler.beginFrame(cmd);
-      ProfileScope scope(&profiler, cmd, "fma peak");
-      kernel.record(cmd, threads, iterations, kA, kB);
+      ProfileScope scope(&profiler, cmd, "peak kernel");
+      record(cmd);
     });
-    if (run > 0) times.push_back(profiler.results().at(0).ms);  // run 0 compiles the pipeline
+    if (run > 0) times.push_back(profiler.results().at(0).ms);
   }
+  return median(times);
+}
+
+}  // namespace
+
+FmaPeak measureFmaPeak(Context& ctx, uint32_t threads, uint32_t iterations, uint32_t runs) {
+  Kernel kernel(ctx, threads);
   FmaPeak peak;
-  peak.ms = median(times);
+  peak.ms = medianKernelMs(
+      ctx, runs, [&](VkCommandBuffer cmd) { kernel.record(cmd, threads, iterations, kA, kB); });
   peak.flops = uint64_t{threads} * iterations * FMA_PEAK_CHAINS * 2;
   peak.gflops = double(peak.flops) / (peak.ms * 1e6);
   return peak;
@@ -94,18 +103,8 @@ BandwidthPeak measureBandwidthPeak(Context& ctx, uint32_t megabytes, uint32_t ru
   CopyKernel kernel(ctx, VkDeviceSize{megabytes} << 20);
   // Written once so the copy reads real data (a never-written allocation may be lazily backed).
   ctx.submitAndWait([&](VkCommandBuffer cmd) { fillBuffer(cmd, kernel.source, 0x3f800000u); });
-  GpuProfiler profiler(ctx, 2);
-  std::vector<double> times;
-  for (uint32_t run = 0; run <= runs; ++run) {
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      profiler.beginFrame(cmd);
-      ProfileScope scope(&profiler, cmd, "bandwidth peak");
-      kernel.record(cmd);
-    });
-    if (run > 0) times.push_back(profiler.results().at(0).ms);  // run 0 compiles the pipeline
-  }
   BandwidthPeak peak;
-  peak.ms = median(times);
+  peak.ms = medianKernelMs(ctx, runs, [&](VkCommandBuffer cmd) { kernel.record(cmd); });
   peak.bytes = 2 * kernel.source.size();
   peak.gbPerSecond = double(peak.bytes) / (peak.ms * 1e6);
   return peak;

@@ -164,6 +164,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
 
   ctx.recordDeferredSetup(cmd);
   profiler.beginFrame(cmd);
+  const engine::Buffer* vsgls = nullptr;  // this frame's, from filtered sampling or k-means
   {
     engine::ProfileScope frame(&profiler, cmd, "frame");
     acquireHostImages(cmd, gbuffer);
@@ -177,17 +178,17 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
     if (brsm)
       brsmPdf->record(cmd, attributes, rsmView, importance->vsgls(), settings.brsm, mips,
                       &profiler);
-    const engine::Buffer& vsgls = recordVsgls(cmd, rsmView, rule);
+    vsgls = &recordVsgls(cmd, rsmView, rule);
     // The maps are built for the shading's visibility or for the debug view, whichever asks.
     if (settings.ismEnabled || settings.debugVsgl >= 0) {
       if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
       ismPointsStale = false;
-      ism.recordBuild(cmd, *scene, vsgls, settings.vsglCount, &profiler);
+      ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
     }
     const uint32_t flags = (settings.glossy ? VSGL_SHADE_GLOSSY : 0u) |
                            (settings.ismEnabled ? VSGL_SHADE_VISIBILITY : 0u);
     shade.record(cmd, gbuffer, camera.invViewProj,
-                 {&vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()}, indirect,
+                 {vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()}, indirect,
                  &profiler);
     if (settings.debugVsgl >= 0) {
       if (!debugVisibility) {
@@ -197,7 +198,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
         desc.format = VK_FORMAT_R32_SFLOAT;
         debugVisibility.emplace(ctx, desc);  // recordVisibility gives it its first layout
       }
-      ism.recordVisibility(cmd, gbuffer, camera, vsgls, static_cast<uint32_t>(settings.debugVsgl),
+      ism.recordVisibility(cmd, gbuffer, camera, *vsgls, static_cast<uint32_t>(settings.debugVsgl),
                            *debugVisibility, &profiler);
     }
     // The outputs, written by compute, become visible to whatever the host does next.
@@ -213,10 +214,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   if (settings.debugVsgl >= 0)
     out.debugVisibility = {debugVisibility->handle(), debugVisibility->view(),
                            debugVisibility->layout()};
-  out.vsgls =
-      (kmeans && settings.method != VsglMethod::FilteredImportanceSampling ? kmeans->vsgls()
-                                                                           : generator.vsgls())
-          .handle();
+  out.vsgls = vsgls->handle();
   out.vsglCount = settings.vsglCount;
   out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
 }

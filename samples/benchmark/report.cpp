@@ -22,6 +22,8 @@ double generationMs(const json& row) {
   return ms;
 }
 
+namespace {
+
 // The targets per scene and VSGL count, from the K = 1 rows: modified FIS against the
 // faster k-means variant (generation time and relMSE) and against Tok15 (generation overhead),
 // and the shading cost per pixel-VSGL pair, also as FMAs at the measured peak.
@@ -62,6 +64,8 @@ json targets(const json& machine, const json& rows) {
   }
   return out;
 }
+
+}  // namespace
 
 void writeReport(const std::filesystem::path& dir, const json& machine, const json& rows) {
   const json summary = targets(machine, rows);

@@ -13,8 +13,6 @@ namespace bench {
 double passMedian(const nlohmann::json& row, const std::string& name);
 // The VSGL stage of a row: filtered sampling, or every k-means pass.
 double generationMs(const nlohmann::json& row);
-// Per scene and VSGL count, from the K = 1 rows (see report.cpp).
-nlohmann::json targets(const nlohmann::json& machine, const nlohmann::json& rows);
 void writeReport(const std::filesystem::path& dir, const nlohmann::json& machine,
                  const nlohmann::json& rows);
 

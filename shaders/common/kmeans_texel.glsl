@@ -12,24 +12,27 @@ struct KmeansTexel {
   bool powered;  // carries power: belongs to a cluster
 };
 
+// From the texel's already fetched power and position sums and PDF (kmeans_sum reads them for
+// its sums anyway).
+KmeansTexel kmeansTexelFrom(ivec2 t, vec4 diffuse, vec4 specular, vec3 diffuseSum,
+                            vec3 specularSum, float pdf, uint size, uint space, uint weighting) {
+  KmeansTexel k;
+  float w = diffuse.w + specular.w;
+  k.powered = w > 0.0;
+  // Both position channels hold w y: their sum over w_d + w_s is y whichever lobe has power.
+  k.feature = space == KMEANS_SPACE_IMAGE ? vec3((vec2(t) + 0.5) / float(size), 0.0)
+            : k.powered                   ? (diffuseSum + specularSum) / w
+                                          : vec3(0.0);
+  k.weight = !k.powered ? 0.0 : weighting == KMEANS_WEIGHT_PDF ? pdf : 1.0;
+  return k;
+}
+
 KmeansTexel kmeansTexel(uint index, uint size, uint space, uint weighting) {
   ivec2 t = ivec2(index % size, index / size);
-  KmeansTexel k;
-  float wd = texelFetch(diffusePower, t, 0).w;
-  float ws = texelFetch(specularPower, t, 0).w;
-  k.powered = wd + ws > 0.0;
-  if (space == KMEANS_SPACE_IMAGE) {
-    k.feature = vec3((vec2(t) + 0.5) / float(size), 0.0);
-  } else {
-    // Both position channels hold w y: their sum over w_d + w_s is y whichever lobe has power.
-    vec3 sum = texelFetch(diffusePosition, t, 0).xyz +
-               texelFetch(specularPosition, t, 0).xyz;
-    k.feature = k.powered ? sum / (wd + ws) : vec3(0.0);
-  }
-  k.weight = !k.powered ? 0.0
-           : weighting == KMEANS_WEIGHT_PDF ? texelFetch(diffuseAxis, t, 0).w
-                                            : 1.0;
-  return k;
+  return kmeansTexelFrom(t, texelFetch(diffusePower, t, 0), texelFetch(specularPower, t, 0),
+                         texelFetch(diffusePosition, t, 0).xyz,
+                         texelFetch(specularPosition, t, 0).xyz,
+                         texelFetch(diffuseAxis, t, 0).w, size, space, weighting);
 }
 
 #endif

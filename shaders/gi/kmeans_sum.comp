@@ -30,13 +30,18 @@ void main() {
   for (uint j = range.x + g; j < range.y; j += KMEANS_SUM_GROUP) {
     uint texel = values[j];
     ivec2 t = ivec2(texel % pc.size, texel / pc.size);
-    sums[VSGL_ATTR_DIFFUSE_POWER] += texelFetch(diffusePower, t, 0);
-    sums[VSGL_ATTR_DIFFUSE_POSITION] += texelFetch(diffusePosition, t, 0);
-    sums[VSGL_ATTR_DIFFUSE_AXIS] += texelFetch(diffuseAxis, t, 0);
-    sums[VSGL_ATTR_SPECULAR_POWER] += texelFetch(specularPower, t, 0);
-    sums[VSGL_ATTR_SPECULAR_POSITION] += texelFetch(specularPosition, t, 0);
-    sums[VSGL_ATTR_SPECULAR_AXIS] += texelFetch(specularAxis, t, 0);
-    KmeansTexel m = kmeansTexel(texel, pc.size, pc.space, pc.weighting);
+    vec4 texelSums[VSGL_ATTR_COUNT];
+    texelSums[VSGL_ATTR_DIFFUSE_POWER] = texelFetch(diffusePower, t, 0);
+    texelSums[VSGL_ATTR_DIFFUSE_POSITION] = texelFetch(diffusePosition, t, 0);
+    texelSums[VSGL_ATTR_DIFFUSE_AXIS] = texelFetch(diffuseAxis, t, 0);
+    texelSums[VSGL_ATTR_SPECULAR_POWER] = texelFetch(specularPower, t, 0);
+    texelSums[VSGL_ATTR_SPECULAR_POSITION] = texelFetch(specularPosition, t, 0);
+    texelSums[VSGL_ATTR_SPECULAR_AXIS] = texelFetch(specularAxis, t, 0);
+    for (uint i = 0u; i < VSGL_ATTR_COUNT; ++i) sums[i] += texelSums[i];
+    KmeansTexel m = kmeansTexelFrom(
+        t, texelSums[VSGL_ATTR_DIFFUSE_POWER], texelSums[VSGL_ATTR_SPECULAR_POWER],
+        texelSums[VSGL_ATTR_DIFFUSE_POSITION].xyz, texelSums[VSGL_ATTR_SPECULAR_POSITION].xyz,
+        texelSums[VSGL_ATTR_DIFFUSE_AXIS].w, pc.size, pc.space, pc.weighting);
     sums[VSGL_ATTR_COUNT] += vec4(m.weight * m.feature, m.weight);
   }
   for (uint a = 0u; a < kSums; ++a) partial[a][g] = sums[a];
