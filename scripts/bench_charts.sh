@@ -2,6 +2,7 @@
 # Charts of a vsgl_benchmark run (docs/benchmarks.md), as PNG and SVG beside its CSVs:
 #   <scene>_accuracy.{png,svg}  relMSE against the module's frame time, one curve per method
 #                               (and K), each point labelled with its VSGL count
+#   <scene>_generation.{png,svg} the same against the VSGL stage's time (no VPL gather)
 #   <scene>_passes.{png,svg}    the frame split into passes (medians), one stacked bar per row
 # Usage: scripts/bench_charts.sh DIR (the benchmark's --out). Needs gnuplot (gnuplot-nox).
 set -euo pipefail
@@ -15,16 +16,27 @@ command -v gnuplot >/dev/null || { echo "bench_charts.sh: gnuplot not found (apt
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-for scene in $(tail -n +2 "$csv" | cut -d, -f1 | sort -u); do
-  # Accuracy: one data block per method and K, "frame_ms relMSE count" per point.
-  series=()
+# A curve's name: the method and K, or the method alone where K does not apply.
+series_key='function series() { return ($2 ~ /^kmeans|^vpl-gather/) ? $2 : $2 " K=" ($4 + 0) }'
+
+# The gnuplot plot clause of relMSE (column 11) against time column $2 of scene $1: one curve per
+# method and K, "time relMSE count" per point, each point labelled with its VSGL count. $3 = 1
+# leaves out the VPL gather (it has no VSGL stage).
+accuracy_plot() {
+  local scene=$1 column=$2 skip_vpl=$3 series=() key file
   while IFS= read -r key; do
-    file="$work/${scene}_${key}.dat"
-    awk -F, -v s="$scene" -v key="$key" 'NR > 1 && $1 == s && ($2 " K=" $4) == key {
-      print $5, $11, $3 }' "$csv" | sort -n -k3 > "$file"
+    file="$work/${scene}_${column}_${key// /_}.dat"
+    awk -F, -v s="$scene" -v key="$key" -v c="$column" "$series_key"'
+      NR > 1 && $1 == s && series() == key { print $c, $11, $3 }' "$csv" | sort -n -k3 > "$file"
     series+=("'$file' using 1:2 with linespoints title '$key', '$file' using 1:2:3 with labels offset 0.8,0.6 font ',8' notitle")
-  done < <(awk -F, -v s="$scene" 'NR > 1 && $1 == s { print $2 " K=" $4 }' "$csv" | sort -u)
-  plot=$(IFS=,; echo "${series[*]}")
+  done < <(awk -F, -v s="$scene" -v skip="$skip_vpl" "$series_key"'
+             NR > 1 && $1 == s && !(skip && $2 == "vpl-gather") { print series() }' "$csv" | sort -u)
+  (IFS=,; echo "${series[*]}")
+}
+
+for scene in $(tail -n +2 "$csv" | cut -d, -f1 | sort -u); do
+  frame_plot=$(accuracy_plot "$scene" 5 0)
+  generation_plot=$(accuracy_plot "$scene" 8 1)
 
   # Passes: a table with one line per row (label, then one column per pass).
   table="$work/${scene}_passes.dat"
@@ -50,13 +62,24 @@ for scene in $(tail -n +2 "$csv" | cut -d, -f1 | sort -u); do
     gnuplot <<EOF
 set terminal $term
 set output '$dir/${scene}_accuracy.$format'
-set title "$scene: accuracy against time (labels: VSGL count)"
+set title "$scene: accuracy against time (labels: VSGL count; VPL gather: RSM side)"
 set xlabel 'module frame time (ms, median)'
 set ylabel 'relMSE against the path tracer'
 set logscale xy
 set grid
 set key outside right
-plot $plot
+plot $frame_plot
+EOF
+    gnuplot <<EOF
+set terminal $term
+set output '$dir/${scene}_generation.$format'
+set title "$scene: accuracy against the VSGL stage's time (labels: VSGL count)"
+set xlabel 'VSGL stage time (ms, median): filtered sampling, or every k-means pass'
+set ylabel 'relMSE against the path tracer'
+set logscale xy
+set grid
+set key outside right
+plot $generation_plot
 EOF
     gnuplot <<EOF
 set terminal $term
@@ -73,5 +96,5 @@ set datafile separator '\t'
 plot for [c=2:$columns] '$table' using c:xtic(1) title columnheader(c)
 EOF
   done
-  echo "wrote $dir/${scene}_accuracy.{png,svg} and $dir/${scene}_passes.{png,svg}"
+  echo "wrote $dir/${scene}_accuracy.{png,svg}, $dir/${scene}_generation.{png,svg} and $dir/${scene}_passes.{png,svg}"
 done

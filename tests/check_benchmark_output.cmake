@@ -1,7 +1,7 @@
 # Checks vsgl_benchmark's output (cmake -DDIR=<out> -DROWS=<n> -P ...): benchmark.json has the
 # machine record and ROWS rows, and every row's error figures and pass times are finite numbers
 # (nlohmann::json writes NaN and infinity as null, which fails the number pattern); the CSV has
-# a header and one line per row.
+# a header and one line per row; each scene's Pareto front is ordered; benchmark.md has its tables.
 file(READ "${DIR}/benchmark.json" text)
 string(JSON rows LENGTH "${text}" rows)
 if(NOT rows EQUAL ROWS)
@@ -38,6 +38,36 @@ foreach(i RANGE ${last})
     endforeach()
   endforeach()
 endforeach()
+# Each scene's Pareto front: at least one entry, times non-decreasing and relMSE strictly
+# decreasing (a later entry must buy accuracy with time), every entry one of the rows.
+string(JSON scenes LENGTH "${text}" pareto)
+if(scenes LESS 1)
+  message(FATAL_ERROR "benchmark.json: no Pareto front")
+endif()
+math(EXPR lastScene "${scenes} - 1")
+foreach(s RANGE ${lastScene})
+  string(JSON scene MEMBER "${text}" pareto ${s})
+  string(JSON entries LENGTH "${text}" pareto ${scene})
+  if(entries LESS 1)
+    message(FATAL_ERROR "benchmark.json: empty Pareto front for ${scene}")
+  endif()
+  math(EXPR lastEntry "${entries} - 1")
+  unset(previousFrame)
+  foreach(e RANGE ${lastEntry})
+    string(JSON frame GET "${text}" pareto ${scene} ${e} frame_ms)
+    string(JSON error GET "${text}" pareto ${scene} ${e} relative_mse)
+    if(DEFINED previousFrame AND (frame LESS previousFrame OR NOT error LESS previousError))
+      message(FATAL_ERROR "benchmark.json: ${scene} Pareto entry ${e} (${frame} ms, ${error}) "
+                          "does not follow (${previousFrame} ms, ${previousError})")
+    endif()
+    set(previousFrame ${frame})
+    set(previousError ${error})
+  endforeach()
+endforeach()
+file(READ "${DIR}/benchmark.md" md)
+if(NOT md MATCHES "### Targets \\(K = 1\\)" OR NOT md MATCHES "Pareto front")
+  message(FATAL_ERROR "benchmark.md: the targets or Pareto tables are missing")
+endif()
 file(STRINGS "${DIR}/benchmark.csv" lines)
 list(LENGTH lines csvLines)
 math(EXPR expected "${ROWS} + 1")

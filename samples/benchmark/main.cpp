@@ -36,6 +36,10 @@ struct Options {
   std::string device;
   bool validation = false;
   bool help = false;
+  // Overrides of the preset's sweep (empty / 0: the preset's own).
+  std::vector<std::string> scenes;
+  std::vector<uint32_t> counts;
+  uint32_t width = 0, height = 0;
 };
 
 const char* usage() {
@@ -44,6 +48,11 @@ const char* usage() {
          "  --out DIR       output directory (default bench): benchmark.json, benchmark.csv,\n"
          "                  rows/ (one record per finished row: a rerun resumes) and cache/\n"
          "                  (path-traced references)\n"
+         "  --scenes LIST   comma-separated scenes (built-in names or .gltf/.glb files) instead\n"
+         "                  of the preset's\n"
+         "  --counts LIST   comma-separated VSGL counts, 1..65535, instead of the preset's\n"
+         "  --width N --height N  image size, 1..8192, instead of the preset's (the path-traced\n"
+         "                  reference's cost grows with the pixel count)\n"
          "  --device SEL    Vulkan device index or name substring\n"
          "  --validation    enable the Khronos validation layer\n";
 }
@@ -56,6 +65,14 @@ Options parseOptions(int argc, char** argv) {
       o.preset = args.value();
     else if (arg == "--out")
       o.outDir = args.value();
+    else if (arg == "--scenes")
+      o.scenes = samples::parseList(arg, args.value());
+    else if (arg == "--counts")
+      o.counts = samples::parseUintList(arg, args.value(), 1, 65535);
+    else if (arg == "--width")
+      o.width = samples::parseUint(arg, args.value(), 1, 8192);
+    else if (arg == "--height")
+      o.height = samples::parseUint(arg, args.value(), 1, 8192);
     else if (arg == "--device")
       o.device = args.value();
     else if (arg == "--validation")
@@ -223,22 +240,11 @@ int run(const Options& o) {
     std::printf("%s", usage());
     return 0;
   }
-  const bench::Preset p = bench::preset(o.preset);
-  const std::filesystem::path out(o.outDir);
-  samples::createOutputDirectory(o.outDir);
-  samples::createOutputDirectory((out / "rows").string());
-  const truth::ReferenceCache cache((out / "cache").string());
-  engine::Context ctx({o.validation, o.device});
-  const json machine = {{"device", ctx.info().name},
-                        {"driver", ctx.info().driver},
-                        {"revision", VSGL_REVISION},
-                        {"fma_peak_gflops", engine::measureFmaPeak(ctx).gflops},
-                        {"copy_bandwidth_gbs", engine::measureBandwidthPeak(ctx).gbPerSecond}};
-  std::printf("device: %s (%s), revision %s; FMA peak %.1f GFLOP/s, copy bandwidth %.1f GB/s\n",
-              ctx.info().name.c_str(), ctx.info().driver.c_str(), VSGL_REVISION,
-              machine["fma_peak_gflops"].get<double>(),
-              machine["copy_bandwidth_gbs"].get<double>());
-
+  bench::Preset p = bench::preset(o.preset);
+  if (!o.scenes.empty()) p.scenes = o.scenes;
+  if (!o.counts.empty()) p.counts = o.counts;
+  if (o.width) p.width = o.width;
+  if (o.height) p.height = o.height;
   // The rows of one scene: every method at every count (and K, for the filtered ones), then
   // the VPL gather at each of its RSM sizes (count = RSM side, k = 0).
   struct RowSpec {
@@ -250,9 +256,29 @@ int run(const Options& o) {
   for (const std::string& method : p.methods)
     for (uint32_t count : p.counts)
       for (float k : p.kernelScales)
-        if (method.rfind("kmeans", 0) != 0 || k == p.kernelScales.front())
+        if (!bench::isKmeans(method) || k == p.kernelScales.front())
           specs.push_back({method, count, k});
   for (uint32_t rsm : p.vplRsmSizes) specs.push_back({"vpl-gather", rsm, 0.0f});
+  for (const RowSpec& spec : specs)  // a bad override fails before anything is measured
+    if (spec.method != "vpl-gather") settingsFor(p, spec.method, spec.count, spec.k);
+  for (const std::string& name : p.scenes)
+    if (!samples::bouncingLight(samples::loadScene(name)))
+      throw engine::Error(name + ": no spot or directional light to bounce");
+  const std::filesystem::path out(o.outDir);
+  samples::createOutputDirectory(o.outDir);
+  samples::createOutputDirectory((out / "rows").string());
+  const truth::ReferenceCache cache((out / "cache").string());
+
+  engine::Context ctx({o.validation, o.device});
+  const json machine = {{"device", ctx.info().name},
+                        {"driver", ctx.info().driver},
+                        {"revision", VSGL_REVISION},
+                        {"fma_peak_gflops", engine::measureFmaPeak(ctx).gflops},
+                        {"copy_bandwidth_gbs", engine::measureBandwidthPeak(ctx).gbPerSecond}};
+  std::printf("device: %s (%s), revision %s; FMA peak %.1f GFLOP/s, copy bandwidth %.1f GB/s\n",
+              ctx.info().name.c_str(), ctx.info().driver.c_str(), VSGL_REVISION,
+              machine["fma_peak_gflops"].get<double>(),
+              machine["copy_bandwidth_gbs"].get<double>());
 
   json rows = json::array();
   const size_t total = specs.size() * p.scenes.size();
@@ -283,9 +309,7 @@ int run(const Options& o) {
                   ? runVplRow(p, *scene, spec.count)
                   : runRow(ctx, p, *scene, settingsFor(p, spec.method, spec.count, spec.k));
         row["identity"] = identity;
-        const std::filesystem::path partial = file.string() + ".partial";
-        std::ofstream(partial) << row.dump(2) << "\n";
-        std::filesystem::rename(partial, file);  // a row file is complete or absent
+        bench::writeFile(file, row.dump(2) + "\n");  // a row file is complete or absent
       }
       json flat = identity;
       for (auto& [key, value] : row.items())

@@ -1,5 +1,6 @@
 #include "cli_values.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -26,6 +27,26 @@ float parseFloat(std::string_view option, std::string_view text, float lo, float
     throw engine::Error(std::string(option) + ": expected a number in [" + std::to_string(lo) +
                         ", " + std::to_string(hi) + "], got '" + s + "'");
   return value;
+}
+
+std::vector<std::string> parseList(std::string_view option, std::string_view text) {
+  std::vector<std::string> words;
+  for (size_t start = 0;;) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    if (comma == start)
+      throw engine::Error(std::string(option) + ": empty item in '" + std::string(text) + "'");
+    words.emplace_back(text.substr(start, comma - start));
+    if (comma == text.size()) return words;
+    start = comma + 1;
+  }
+}
+
+std::vector<uint32_t> parseUintList(std::string_view option, std::string_view text, uint32_t lo,
+                                    uint32_t hi) {
+  std::vector<uint32_t> values;
+  for (const std::string& word : parseList(option, text))
+    values.push_back(parseUint(option, word, lo, hi));
+  return values;
 }
 
 }  // namespace samples

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "engine/error.h"
 
@@ -32,6 +33,11 @@ class Arguments {
 
 uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi);
 float parseFloat(std::string_view option, std::string_view text, float lo, float hi);
+// A comma-separated list of non-empty words, e.g. --scenes cornell,atrium.
+std::vector<std::string> parseList(std::string_view option, std::string_view text);
+// A comma-separated list of integers, each in [lo, hi], e.g. --counts 64,256.
+std::vector<uint32_t> parseUintList(std::string_view option, std::string_view text, uint32_t lo,
+                                    uint32_t hi);
 
 // One of a fixed set of words, e.g. --ism on|off; anything else names the accepted words.
 template <class T>
