@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "cli_values.h"
 #include "engine/gbuffer.h"
@@ -181,39 +182,57 @@ json errorRecord(const std::vector<glm::dvec3>& image, const std::vector<glm::dv
            "path tracer, " + std::to_string(p.referenceNoise) + " relative standard error"}};
 }
 
-json runRow(engine::Context& ctx, const bench::Preset& p, SceneRun& s,
-            const gi::Settings& settings) {
-  auto lighting = samples::createIndirect(ctx, settings, p.width, p.height, *s.gpuScene, s.scene);
-  const gi::FrameInput input = samples::frameInput(*s.gbuffer, s.view, *s.light);
-  gi::FrameOutput output;
+// One frame series of a row: every pass's times over the measured frames, in first-seen order.
+struct PassSamples {
   std::map<std::string, std::vector<double>> times;
   std::map<std::string, uint32_t> dispatches;
   std::vector<std::string> order;
-  for (uint32_t frame = 0; frame < p.warmup + p.frames; ++frame) {
-    ctx.submitAndWait(
-        [&](VkCommandBuffer cmd) { samples::check(lighting->record(cmd, input, &output)); });
-    if (frame < p.warmup) continue;  // the first frame compiles the pipelines
-    for (const gi::PassTime& t : lighting->lastFrameTimes()) {
-      if (!times.count(t.name)) order.push_back(t.name);
-      times[t.name].push_back(t.ms);
-      dispatches[t.name] = t.dispatches;
+};
+
+// Rows of one scene and VSGL count, measured together: their frames interleave, one frame of
+// each in turn. On a shared machine, medians drift by tens of percent over minutes; interleaved
+// rows see the same drift, so the ratios between them hold.
+std::vector<json> runRows(engine::Context& ctx, const bench::Preset& p, SceneRun& s,
+                          const std::vector<gi::Settings>& settings) {
+  const gi::FrameInput input = samples::frameInput(*s.gbuffer, s.view, *s.light);
+  std::vector<std::unique_ptr<gi::IndirectLighting>> lightings;
+  for (const gi::Settings& one : settings)
+    lightings.push_back(samples::createIndirect(ctx, one, p.width, p.height, *s.gpuScene, s.scene));
+  std::vector<gi::FrameOutput> outputs(settings.size());
+  std::vector<PassSamples> samples(settings.size());
+  for (uint32_t frame = 0; frame < p.warmup + p.frames; ++frame)
+    for (size_t i = 0; i < lightings.size(); ++i) {
+      ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        samples::check(lightings[i]->record(cmd, input, &outputs[i]));
+      });
+      if (frame < p.warmup) continue;  // the first frame compiles the pipelines
+      for (const gi::PassTime& t : lightings[i]->lastFrameTimes()) {
+        if (!samples[i].times.count(t.name)) samples[i].order.push_back(t.name);
+        samples[i].times[t.name].push_back(t.ms);
+        samples[i].dispatches[t.name] = t.dispatches;
+      }
     }
+  std::vector<json> rows;
+  for (size_t i = 0; i < lightings.size(); ++i) {
+    PassSamples& m = samples[i];
+    json passes = json::array();
+    for (const std::string& name : m.order)
+      passes.push_back({{"name", name},
+                        {"median_ms", quantile(m.times[name], 0.5)},
+                        {"p5_ms", quantile(m.times[name], 0.05)},
+                        {"p95_ms", quantile(m.times[name], 0.95)},
+                        {"dispatches", m.dispatches[name]}});
+    const samples::Indirect indirect = samples::readIndirect(ctx, outputs[i], p.width, p.height);
+    std::vector<glm::dvec3> image(s.reference.size());
+    for (size_t j = 0; j < image.size(); ++j)
+      for (int c = 0; c < 3; ++c)
+        image[j][c] =
+            double(indirect.diffuse.pixels[4 * j + c]) + indirect.glossy.pixels[4 * j + c];
+    rows.push_back({{"passes", passes},
+                    {"error", errorRecord(image, s.reference, p)},
+                    {"peak_resident_mb", peakResidentMegabytes()}});
   }
-  json passes = json::array();
-  for (const std::string& name : order)
-    passes.push_back({{"name", name},
-                      {"median_ms", quantile(times[name], 0.5)},
-                      {"p5_ms", quantile(times[name], 0.05)},
-                      {"p95_ms", quantile(times[name], 0.95)},
-                      {"dispatches", dispatches[name]}});
-  const samples::Indirect indirect = samples::readIndirect(ctx, output, p.width, p.height);
-  std::vector<glm::dvec3> image(s.reference.size());
-  for (size_t i = 0; i < image.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      image[i][c] = double(indirect.diffuse.pixels[4 * i + c]) + indirect.glossy.pixels[4 * i + c];
-  return {{"passes", passes},
-          {"error", errorRecord(image, s.reference, p)},
-          {"peak_resident_mb", peakResidentMegabytes()}};
+  return rows;
 }
 
 // The brute-force VPL gather over an rsm^2 RSM (gi/truth/vpl_gather.h) as a row: its CPU wall
@@ -245,26 +264,35 @@ int run(const Options& o) {
   if (!o.counts.empty()) p.counts = o.counts;
   if (o.width) p.width = o.width;
   if (o.height) p.height = o.height;
-  // The rows of one scene: every method at every count (and K, for the filtered ones), then
-  // the VPL gather at each of its RSM sizes (count = RSM side, k = 0).
+  // The rows of one scene in groups measured together (runRows): per VSGL count, every method
+  // (and K, for the filtered ones); then the VPL gather at each of its RSM sizes (count = RSM
+  // side, k = 0), one group each.
   struct RowSpec {
     std::string method;
     uint32_t count;
     float k;
   };
-  std::vector<RowSpec> specs;
-  for (const std::string& method : p.methods)
-    for (uint32_t count : p.counts)
+  std::vector<std::vector<RowSpec>> groups;
+  for (uint32_t count : p.counts) {
+    groups.emplace_back();
+    for (const std::string& method : p.methods)
       for (float k : p.kernelScales)
         if (!bench::isKmeans(method) || k == p.kernelScales.front())
-          specs.push_back({method, count, k});
-  for (uint32_t rsm : p.vplRsmSizes) specs.push_back({"vpl-gather", rsm, 0.0f});
-  for (const RowSpec& spec : specs)  // a bad override fails before anything is measured
-    if (spec.method != "vpl-gather") settingsFor(p, spec.method, spec.count, spec.k);
+          groups.back().push_back({method, count, k});
+  }
+  for (uint32_t rsm : p.vplRsmSizes) groups.push_back({{"vpl-gather", rsm, 0.0f}});
+  size_t total = 0;
+  for (const auto& group : groups)
+    for (const RowSpec& spec : group) {  // a bad override fails before anything is measured
+      if (spec.method != "vpl-gather") settingsFor(p, spec.method, spec.count, spec.k);
+      ++total;
+    }
+  total *= p.scenes.size();
   for (const std::string& name : p.scenes)
     if (!samples::bouncingLight(samples::loadScene(name)))
       throw engine::Error(name + ": no spot or directional light to bounce");
   const std::filesystem::path out(o.outDir);
+  auto rowFile = [&](const json& identity) { return out / "rows" / (rowKey(identity) + ".json"); };
   samples::createOutputDirectory(o.outDir);
   samples::createOutputDirectory((out / "rows").string());
   const truth::ReferenceCache cache((out / "cache").string());
@@ -281,48 +309,78 @@ int run(const Options& o) {
               machine["copy_bandwidth_gbs"].get<double>());
 
   json rows = json::array();
-  const size_t total = specs.size() * p.scenes.size();
   size_t done = 0;
   for (const std::string& sceneName : p.scenes) {
     std::optional<SceneRun> scene;  // prepared at its first row that is not cached
-    for (const RowSpec& spec : specs) {
-      const json identity = {{"preset", p.name},
-                             {"scene", sceneName},
-                             {"method", spec.method},
-                             {"count", spec.count},
-                             {"k", spec.k},
-                             {"width", p.width},
-                             {"height", p.height},
-                             {"rsm", spec.method == "vpl-gather" ? spec.count : p.rsmSize},
-                             {"frames", p.frames},
-                             {"warmup", p.warmup},
-                             {"reference_noise", p.referenceNoise},
-                             {"device", ctx.info().name},
-                             {"revision", VSGL_REVISION}};
-      const std::filesystem::path file = out / "rows" / (rowKey(identity) + ".json");
-      ++done;
-      json row;
-      if (std::ifstream in(file); in) row = json::parse(in, nullptr, false);
-      if (row.is_discarded() || !row.is_object() || row.value("identity", json()) != identity) {
-        if (!scene) scene = prepareScene(ctx, p, sceneName, cache);
-        row = spec.method == "vpl-gather"
-                  ? runVplRow(p, *scene, spec.count)
-                  : runRow(ctx, p, *scene, settingsFor(p, spec.method, spec.count, spec.k));
-        row["identity"] = identity;
-        bench::writeFile(file, row.dump(2) + "\n");  // a row file is complete or absent
+    for (const std::vector<RowSpec>& group : groups) {
+      std::vector<json> identities, records(group.size());
+      std::vector<size_t> pending;
+      for (size_t i = 0; i < group.size(); ++i) {
+        const RowSpec& spec = group[i];
+        identities.push_back({{"preset", p.name},
+                              {"scene", sceneName},
+                              {"method", spec.method},
+                              {"count", spec.count},
+                              {"k", spec.k},
+                              {"width", p.width},
+                              {"height", p.height},
+                              {"rsm", spec.method == "vpl-gather" ? spec.count : p.rsmSize},
+                              {"frames", p.frames},
+                              {"warmup", p.warmup},
+                              {"reference_noise", p.referenceNoise},
+                              {"device", ctx.info().name},
+                              {"revision", VSGL_REVISION}});
+        if (std::ifstream in(rowFile(identities[i])); in)
+          records[i] = json::parse(in, nullptr, false);
+        if (records[i].is_discarded() || !records[i].is_object() ||
+            records[i].value("identity", json()) != identities[i])
+          pending.push_back(i);
       }
-      json flat = identity;
-      for (auto& [key, value] : row.items())
-        if (key != "identity") flat[key] = value;
-      std::printf(
-          "[%zu/%zu] %s %s N=%u K=%g: frame %.1f ms, generation %.2f ms, RMSE %.1f %% of mean\n",
-          done, total, sceneName.c_str(), spec.method.c_str(), spec.count, double(spec.k),
-          bench::passMedian(flat, "frame"), bench::generationMs(flat),
-          100.0 * flat["error"]["rmse_of_mean"].get<double>());
-      std::fflush(stdout);
-      rows.push_back(flat);
+      if (!pending.empty()) {
+        if (!scene) scene = prepareScene(ctx, p, sceneName, cache);
+        std::vector<json> measured;
+        if (group.front().method == "vpl-gather") {
+          measured.push_back(runVplRow(p, *scene, group.front().count));
+        } else {
+          std::vector<gi::Settings> settings;
+          for (size_t i : pending)
+            settings.push_back(settingsFor(p, group[i].method, group[i].count, group[i].k));
+          measured = runRows(ctx, p, *scene, settings);
+        }
+        for (size_t j = 0; j < pending.size(); ++j) {
+          json& row = records[pending[j]];
+          row = measured[j];
+          row["identity"] = identities[pending[j]];
+          // A row file is complete or absent.
+          bench::writeFile(rowFile(identities[pending[j]]), row.dump(2) + "\n");
+        }
+      }
+      for (size_t i = 0; i < group.size(); ++i) {
+        json flat = identities[i];
+        for (auto& [key, value] : records[i].items())
+          if (key != "identity") flat[key] = value;
+        std::printf(
+            "[%zu/%zu] %s %s N=%u K=%g: frame %.1f ms, generation %.2f ms, RMSE %.1f %% of "
+            "mean\n",
+            ++done, total, sceneName.c_str(), group[i].method.c_str(), group[i].count,
+            double(group[i].k), bench::passMedian(flat, "frame"), bench::generationMs(flat),
+            100.0 * flat["error"]["rmse_of_mean"].get<double>());
+        std::fflush(stdout);
+        rows.push_back(flat);
+      }
     }
   }
+  // The tables read best method by method: per scene, rows in the preset's method order (the
+  // VPL gather last), then by count and K.
+  auto rank = [&](const json& r) {
+    auto index = [](const std::vector<std::string>& list, const std::string& name) {
+      return size_t(std::find(list.begin(), list.end(), name) - list.begin());
+    };
+    return std::make_tuple(index(p.scenes, r["scene"]), index(p.methods, r["method"]),
+                           r["count"].get<uint32_t>(), r["k"].get<double>());
+  };
+  std::stable_sort(rows.begin(), rows.end(),
+                   [&](const json& a, const json& b) { return rank(a) < rank(b); });
   bench::writeReport(out, machine, rows);
   std::printf(
       "wrote %s, benchmark.csv and benchmark_passes.csv (charts: scripts/bench_charts.sh %s)\n",
