@@ -9,13 +9,19 @@ const float kSgFltMin = 1.17549435e-38;
 // v >= d^2 / 2^41 (section 4.1): the spot sharpness d^2 / v stays <= VSGL_MAX_SHARPNESS.
 const float kSgVarianceFloorScale = 4.5474735e-13;
 
-// (e^x - 1) / x with the Higham/Kahan correction (section 4.2): (u - 1) / log(u) cancels the
-// rounding of u = e^x near x = 0, where the naive (u - 1) / x loses every digit.
+// (e^x - 1) / x (section 4.2). Below |x| = 1 its Taylor series sum x^k / (k + 1)!, k <= 10
+// (truncation < 1 / 12! = 2.1e-9, so the two branches meet to fp32 rounding), above the plain
+// quotient, which no longer cancels. The double oracle's Higham/Kahan form (u - 1) / log(u)
+// needs a log accurate to an ulp of u - 1 at u = e^x near 1; lavapipe's log is only absolutely
+// accurate there, and that form read em1x(1e-7) = 1.19 and em1x(-1e-30) = 6e22, so S(1e-8)
+// was 37 instead of 4 pi (tests/gpu/test_stability_sg.cpp, section 12 case 9).
 float em1x(float x) {
-  float u = exp(x);
-  if (u == 1.0) return 1.0;
-  float y = u - 1.0;
-  return abs(x) < 1.0 ? y / log(u) : y / x;
+  if (abs(x) < 1.0) {
+    return 1.0 + x * (1.0 / 2.0 + x * (1.0 / 6.0 + x * (1.0 / 24.0 + x * (1.0 / 120.0 +
+           x * (1.0 / 720.0 + x * (1.0 / 5040.0 + x * (1.0 / 40320.0 + x * (1.0 / 362880.0 +
+           x * (1.0 / 3628800.0 + x * (1.0 / 39916800.0))))))))));
+  }
+  return (exp(x) - 1.0) / x;
 }
 
 // Integral of G over the sphere, 4 pi em1x(-2 lambda): 4 pi at lambda = 0, 2 pi / lambda for large.

@@ -276,4 +276,50 @@ TEST_F(VsglShadeTest, FarTinyVarianceIsPointLight) {
   EXPECT_GT(compared, size_t{kWidth * kHeight / 4});
 }
 
+// vsgl-math.md section 12, case 14: NaN and Inf in a host's material channels (a broken texture)
+// must not become NaN light. Each poisoned pixel gets finite, non-negative light; a NaN albedo
+// reads as black, so that pixel's diffuse light is 0; every other pixel is unchanged, bit for
+// bit (the guard is per pixel and the pass is deterministic).
+TEST_F(VsglShadeTest, NonFiniteMaterialGivesFiniteLight) {
+  const std::vector<gpu::Vsgl> vsgls = hardCaseVsgls(scene_, receiver(kWidth / 2, kHeight / 2));
+  const Shaded clean = shade(vsgls, VSGL_SHADE_GLOSSY);
+  const std::vector<glm::uvec2> poisoned = {{12, 12}, {24, 16}, {34, 20}};
+  for (const glm::uvec2& p : poisoned) ASSERT_FALSE(decoded_.at(p.x, p.y).background());
+  std::vector<std::byte> diffuse = gbuffer_->diffuse.readback(ctx());
+  std::vector<std::byte> specular = gbuffer_->specular.readback(ctx());
+  auto half = [](std::vector<std::byte>& image, glm::uvec2 p, int channel) {
+    return reinterpret_cast<uint16_t*>(image.data()) + (size_t{p.y} * kWidth + p.x) * 4 + channel;
+  };
+  const uint16_t nan = 0x7E00, inf = 0x7C00;                          // binary16
+  for (int c = 0; c < 3; ++c) *half(diffuse, poisoned[0], c) = nan;   // albedo
+  *half(diffuse, poisoned[1], 3) = nan;                               // roughness
+  for (int c = 0; c < 3; ++c) *half(specular, poisoned[2], c) = inf;  // F0
+  *half(diffuse, poisoned[2], 3) = inf;
+  gbuffer_->diffuse.upload(ctx(), diffuse.data(), diffuse.size());
+  gbuffer_->specular.upload(ctx(), specular.data(), specular.size());
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    engine::imageBarrier(cmd, gbuffer_->diffuse, VK_IMAGE_LAYOUT_GENERAL);
+    engine::imageBarrier(cmd, gbuffer_->specular, VK_IMAGE_LAYOUT_GENERAL);
+  });
+  const Shaded dirty = shade(vsgls, VSGL_SHADE_GLOSSY);
+  for (uint32_t y = 0; y < kHeight; ++y)
+    for (uint32_t x = 0; x < kWidth; ++x) {
+      const size_t i = size_t{y} * kWidth + x;
+      const bool hit =
+          std::find(poisoned.begin(), poisoned.end(), glm::uvec2(x, y)) != poisoned.end();
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_TRUE(std::isfinite(dirty.diffuse[i][c]) && std::isfinite(dirty.glossy[i][c]))
+            << "pixel " << x << ", " << y;
+        EXPECT_GE(dirty.diffuse[i][c], 0.0f);
+        EXPECT_GE(dirty.glossy[i][c], 0.0f);
+        if (!hit) {
+          EXPECT_EQ(dirty.diffuse[i][c], clean.diffuse[i][c]) << "pixel " << x << ", " << y;
+          EXPECT_EQ(dirty.glossy[i][c], clean.glossy[i][c]) << "pixel " << x << ", " << y;
+        }
+      }
+    }
+  const size_t black = size_t{poisoned[0].y} * kWidth + poisoned[0].x;
+  EXPECT_EQ(glm::vec3(dirty.diffuse[black]), glm::vec3(0.0f));
+}
+
 }  // namespace
