@@ -190,6 +190,31 @@ void writePng(const std::string& path, int width, int height, std::span<const ui
   writeAtomically(path, "png", spec, OIIO::TypeDesc::UINT8, rgba8.data());
 }
 
+void writeAnimatedGif(const std::string& path, int width, int height,
+                      std::span<const std::vector<uint8_t>> frames, int framesPerSecond) {
+  if (frames.empty()) throw Error(path + ": an animation needs at least one frame");
+  for (const std::vector<uint8_t>& frame : frames) validateSize(path, width, height, frame.size());
+  TempFile temp(path);
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("gif");
+  if (!out || !out->supports("multiimage"))
+    throw Error(path + ": this OpenImageIO build cannot write animated GIF");
+  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("FramesPerSecond", OIIO::TypeRational,
+                 std::array<int, 2>{framesPerSecond, 1}.data());
+  spec.attribute("oiio:LoopCount", 0);  // forever
+  const std::vector<OIIO::ImageSpec> specs(frames.size(), spec);
+  if (!out->open(temp.path(), int(specs.size()), specs.data()))
+    throw Error(path + ": " + oiioMessage(out->geterror()));
+  for (size_t i = 0; i < frames.size(); ++i) {
+    if (i > 0 && !out->open(temp.path(), specs[i], OIIO::ImageOutput::AppendSubimage))
+      throw Error(path + ": " + oiioMessage(out->geterror()));
+    if (!out->write_image(OIIO::TypeDesc::UINT8, frames[i].data()))
+      throw Error(path + ": " + oiioMessage(out->geterror()));
+  }
+  if (!out->close()) throw Error(path + ": " + oiioMessage(out->geterror()));
+  temp.commit();
+}
+
 ImageRgba32f readImage(const std::string& path) {
   requireRegularFile(path);
   const OIIO::ImageSpec config = straightAlphaConfig();

@@ -221,4 +221,61 @@ double percentileAbsError(std::span<const glm::dvec3> test, std::span<const glm:
   return errors[k];
 }
 
+BlockMeans blockMeans(std::span<const glm::dvec3> image, uint32_t width, uint32_t height,
+                      uint32_t block, std::span<const uint8_t> valid) {
+  if (block == 0) throw Error("blockMeans: block size 0");
+  if (image.size() != size_t{width} * height || (!valid.empty() && valid.size() != image.size()))
+    throw Error("blockMeans: " + std::to_string(image.size()) + " pixels for a " +
+                std::to_string(width) + "x" + std::to_string(height) + " image");
+  BlockMeans b{width / block, height / block, {}, {}};
+  b.means.assign(size_t{b.width} * b.height, glm::dvec3(0.0));
+  b.valid.assign(b.means.size(), 0);
+  for (uint32_t by = 0; by < b.height; ++by)
+    for (uint32_t bx = 0; bx < b.width; ++bx) {
+      glm::dvec3 sum(0.0);
+      uint32_t count = 0;
+      for (uint32_t y = by * block; y < (by + 1) * block; ++y)
+        for (uint32_t x = bx * block; x < (bx + 1) * block; ++x) {
+          const size_t i = size_t{y} * width + x;
+          if (!valid.empty() && !valid[i]) continue;
+          sum += image[i];
+          ++count;
+        }
+      const size_t k = size_t{by} * b.width + bx;
+      if (2 * count < block * block || count == 0) continue;
+      b.means[k] = sum / double(count);
+      b.valid[k] = 1;
+    }
+  return b;
+}
+
+double temporalError(std::span<const glm::dvec3> previous, std::span<const glm::dvec3> current,
+                     std::span<const glm::dvec3> previousReference,
+                     std::span<const glm::dvec3> currentReference, std::span<const uint8_t> valid) {
+  checkSameSize("temporalError", previous, current);
+  checkSameSize("temporalError", previousReference, currentReference);
+  checkSameSize("temporalError", current, currentReference);
+  if (!valid.empty() && valid.size() != current.size())
+    throw Error("temporalError: mask has " + std::to_string(valid.size()) + " entries, images " +
+                std::to_string(current.size()) + " pixels");
+  double squared = 0.0, referenceSum = 0.0;
+  size_t pixels = 0;
+  for (size_t i = 0; i < current.size(); ++i) {
+    if (!valid.empty() && !valid[i]) continue;
+    ++pixels;
+    if (!isFinite(previous[i]) || !isFinite(current[i]) || !isFinite(previousReference[i]) ||
+        !isFinite(currentReference[i]))
+      throw Error("temporalError: pixel " + std::to_string(i) + " is not finite");
+    const glm::dvec3 change =
+        (current[i] - currentReference[i]) - (previous[i] - previousReference[i]);
+    squared += glm::dot(change, change);
+    for (int c = 0; c < 3; ++c) referenceSum += previousReference[i][c] + currentReference[i][c];
+  }
+  if (pixels == 0) return 0.0;
+  const double values = 3.0 * static_cast<double>(pixels);
+  const double rms = std::sqrt(squared / values);
+  const double mean = referenceSum / (2.0 * values);
+  return mean > 0.0 ? rms / mean : rms;
+}
+
 }  // namespace engine

@@ -34,9 +34,7 @@ using nlohmann::json;
 struct Options {
   std::string preset = "ci";
   std::string outDir = "bench";
-  std::string device;
-  bool validation = false;
-  bool help = false;
+  samples::CommonOptions common;  // --device, --validation, --help
   // Overrides of the preset's sweep (empty / 0: the preset's own).
   std::vector<std::string> scenes;
   std::vector<uint32_t> counts;
@@ -74,14 +72,8 @@ Options parseOptions(int argc, char** argv) {
       o.width = samples::parseUint(arg, args.value(), 1, 8192);
     else if (arg == "--height")
       o.height = samples::parseUint(arg, args.value(), 1, 8192);
-    else if (arg == "--device")
-      o.device = args.value();
-    else if (arg == "--validation")
-      o.validation = true;
-    else if (arg == "--help" || arg == "-h")
-      o.help = true;
     else
-      throw engine::Error(std::string(arg) + ": unknown option (see --help)");
+      samples::parseCommonOption(arg, args, o.common);
   }
   if (o.outDir.empty()) throw engine::Error("--out: empty path");
   return o;
@@ -255,7 +247,7 @@ json runVplRow(const bench::Preset& p, SceneRun& s, uint32_t rsm) {
 }
 
 int run(const Options& o) {
-  if (o.help) {
+  if (o.common.help) {
     std::printf("%s", usage());
     return 0;
   }
@@ -297,7 +289,7 @@ int run(const Options& o) {
   samples::createOutputDirectory((out / "rows").string());
   const truth::ReferenceCache cache((out / "cache").string());
 
-  engine::Context ctx({o.validation, o.device});
+  engine::Context ctx({o.common.validation, o.common.device});
   const json machine = {{"device", ctx.info().name},
                         {"driver", ctx.info().driver},
                         {"revision", VSGL_REVISION},

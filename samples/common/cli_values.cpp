@@ -10,6 +10,17 @@
 
 namespace samples {
 
+void parseCommonOption(std::string_view arg, Arguments& args, CommonOptions& o) {
+  if (arg == "--device")
+    o.device = args.value();
+  else if (arg == "--validation")
+    o.validation = true;
+  else if (arg == "--help" || arg == "-h")
+    o.help = true;
+  else
+    throw engine::Error(std::string(arg) + ": unknown option (see --help)");
+}
+
 uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi) {
   uint32_t value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

@@ -31,6 +31,15 @@ class Arguments {
   int index_ = 0;
 };
 
+// The options at the end of every sample program's command line.
+struct CommonOptions {
+  std::string device;  // --device SEL: index or name substring ("" = VSGL_DEVICE or automatic)
+  bool validation = false;  // --validation
+  bool help = false;        // --help, -h
+};
+// Takes `arg` (and its value) into `o`; anything else throws "<arg>: unknown option (see --help)".
+void parseCommonOption(std::string_view arg, Arguments& args, CommonOptions& o);
+
 uint32_t parseUint(std::string_view option, std::string_view text, uint32_t lo, uint32_t hi);
 float parseFloat(std::string_view option, std::string_view text, float lo, float hi);
 // A comma-separated list of non-empty words, e.g. --scenes cornell,atrium.

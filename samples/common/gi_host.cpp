@@ -16,16 +16,7 @@ const engine::Light* bouncingLight(const engine::Scene& scene) {
   return nullptr;
 }
 
-std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
-                                                     const gi::Settings& settings, uint32_t width,
-                                                     uint32_t height,
-                                                     const engine::SceneGpu& gpuScene,
-                                                     const engine::Scene& scene) {
-  gi::Status status;
-  auto lighting = gi::IndirectLighting::create(
-      {ctx.instance(), ctx.physicalDevice(), ctx.device(), ctx.queueFamily()}, settings, width,
-      height, &status);
-  check(status);
+gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::Scene& scene) {
   gi::SceneGeometry geometry;
   geometry.vertices = gpuScene.vertices.handle();
   geometry.vertexBytes = gpuScene.vertices.size();
@@ -42,7 +33,20 @@ std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
   const engine::Bounds bounds = scene.bounds();
   geometry.boundsMin = bounds.min;
   geometry.boundsMax = bounds.max;
-  check(lighting->setScene(geometry));
+  return geometry;
+}
+
+std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
+                                                     const gi::Settings& settings, uint32_t width,
+                                                     uint32_t height,
+                                                     const engine::SceneGpu& gpuScene,
+                                                     const engine::Scene& scene) {
+  gi::Status status;
+  auto lighting = gi::IndirectLighting::create(
+      {ctx.instance(), ctx.physicalDevice(), ctx.device(), ctx.queueFamily()}, settings, width,
+      height, &status);
+  check(status);
+  check(lighting->setScene(sceneGeometry(gpuScene, scene)));
   return lighting;
 }
 

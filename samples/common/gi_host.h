@@ -24,6 +24,9 @@ void check(const gi::Status& status);
 // support point lights yet), or null.
 const engine::Light* bouncingLight(const engine::Scene& scene);
 
+// `gpuScene`'s buffers and images as the API's plain handles, with `scene`'s bounds.
+gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::Scene& scene);
+
 // The module on `ctx`'s device for a width x height G-buffer, with `scene`'s geometry set.
 std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
                                                      const gi::Settings& settings, uint32_t width,

@@ -43,9 +43,7 @@ struct Options {
   uint32_t width = 320;  // the BRSM's additional camera G-buffer
   uint32_t height = 180;
   uint32_t frames = 5;  // timed frames per rule (after one warm-up frame each)
-  std::string device;
-  bool validation = false;
-  bool help = false;
+  samples::CommonOptions common;  // --device, --validation, --help
 };
 
 const char* usage() {
@@ -96,14 +94,8 @@ Options parseOptions(int argc, char** argv) {
       o.width = samples::parseUint(arg, args.value(), 16, 4096);
     else if (arg == "--height")
       o.height = samples::parseUint(arg, args.value(), 16, 4096);
-    else if (arg == "--device")
-      o.device = args.value();
-    else if (arg == "--validation")
-      o.validation = true;
-    else if (arg == "--help" || arg == "-h")
-      o.help = true;
     else
-      throw Error(std::string(arg) + ": unknown option (see --help)");
+      samples::parseCommonOption(arg, args, o.common);
   }
   auto names = engine::builtinSceneNames();
   if (std::find(names.begin(), names.end(), o.scene) == names.end())
@@ -348,7 +340,7 @@ void printTimings(engine::Context& ctx, const Options& o, Frame& frame) {
 }
 
 int run(const Options& o) {
-  if (o.help) {
+  if (o.common.help) {
     std::printf("%s", usage());
     return 0;
   }
@@ -357,7 +349,7 @@ int run(const Options& o) {
   if (ec) throw Error(o.outDir + ": cannot create output directory: " + ec.message());
 
   engine::Scene scene = engine::makeBuiltinScene(o.scene);
-  engine::Context ctx({o.validation, o.device});
+  engine::Context ctx({o.common.validation, o.common.device});
   Frame frame(ctx, o, scene);
   std::printf("device: %s (%s)\nscene: %s, light '%s', RSM %u^2, N = %u, K = %g\n",
               ctx.info().name.c_str(), ctx.info().driver.c_str(), scene.source.c_str(),

@@ -253,4 +253,55 @@ TEST(FalseColour, WritesThePictureAsPng) {
                engine::Error);
 }
 
+// The flicker figure (docs/flicker.md): 0 exactly for a static pair, 0 when the method moves
+// exactly as the reference does (a constant bias included), and the RMS of the change it adds
+// over the reference's mean otherwise; a non-finite pixel is refused.
+TEST(TemporalError, StaticIsZeroSharedMotionCancelsAndAddedChangeCounts) {
+  const std::vector<dvec3> r0{dvec3(1.0), dvec3(2.0), dvec3(3.0), dvec3(2.0)};
+  const std::vector<dvec3> r1{dvec3(2.0), dvec3(1.0), dvec3(3.0), dvec3(2.0)};
+  std::vector<dvec3> i0(r0), i1(r1);
+  for (auto& v : i0) v += dvec3(0.5);  // a bias, the same in both frames
+  for (auto& v : i1) v += dvec3(0.5);
+  EXPECT_EQ(engine::temporalError(i0, i0, r0, r0), 0.0);
+  EXPECT_EQ(engine::temporalError(i0, i1, r0, r1), 0.0);
+  std::vector<dvec3> flicker(i1);
+  flicker[2] += dvec3(0.8, 0.0, 0.0);  // one channel of one pixel jumps by 0.8
+  // RMS over 4 pixels x 3 channels: sqrt(0.64 / 12); reference mean 2.
+  EXPECT_NEAR(engine::temporalError(i0, flicker, r0, r1), std::sqrt(0.64 / 12.0) / 2.0, 1e-15);
+  const std::vector<dvec3> black(4, dvec3(0.0));
+  EXPECT_NEAR(
+      engine::temporalError(black, flicker, black, black),
+      std::sqrt((3 * 1.5 * 1.5 + 3 * 2.5 * 2.5 + (4.3 * 4.3 + 2 * 3.5 * 3.5) + 3 * 2.5 * 2.5) /
+                12.0),
+      1e-12);
+  // A mask leaves pixels out: only pixel 2 counted, sqrt(0.64 / 3) over its reference mean 3.
+  const std::vector<uint8_t> only2{0, 0, 1, 0};
+  EXPECT_NEAR(engine::temporalError(i0, flicker, r0, r1, only2), std::sqrt(0.64 / 3.0) / 3.0,
+              1e-15);
+  std::vector<dvec3> bad(i1);
+  bad[1].y = kNaN;
+  EXPECT_THROW(engine::temporalError(i0, bad, r0, r1), engine::Error);
+}
+
+// Block means: exact means of the valid pixels of each whole block; a block with fewer than half
+// of its pixels valid is invalid (mean 0); the partial right column of blocks is dropped.
+TEST(BlockMeans, MeansOfValidPixelsAndHalfRule) {
+  // 5 x 2 image, 2 x 2 blocks: two whole blocks, the fifth column dropped.
+  std::vector<dvec3> image(10);
+  for (size_t i = 0; i < image.size(); ++i) image[i] = dvec3(double(i));
+  std::vector<uint8_t> valid(10, 1);
+  valid[2] = 0;                        // block 1 keeps 3 of 4: pixels 3, 7, 8
+  valid[0] = valid[1] = valid[5] = 0;  // block 0 keeps 1 of 4: invalid
+  const engine::BlockMeans b = engine::blockMeans(image, 5, 2, 2, valid);
+  ASSERT_EQ(b.width, 2u);
+  ASSERT_EQ(b.height, 1u);
+  EXPECT_EQ(b.valid, (std::vector<uint8_t>{0, 1}));
+  EXPECT_EQ(b.means[0], dvec3(0.0));
+  EXPECT_EQ(b.means[1], dvec3((3.0 + 7.0 + 8.0) / 3.0));
+  const engine::BlockMeans all = engine::blockMeans(image, 5, 2, 2);
+  EXPECT_EQ(all.means[0], dvec3((0.0 + 1.0 + 5.0 + 6.0) / 4.0));
+  EXPECT_THROW(engine::blockMeans(image, 4, 2, 2), engine::Error);
+  EXPECT_THROW(engine::blockMeans(image, 5, 2, 0), engine::Error);
+}
+
 }  // namespace

@@ -24,6 +24,10 @@ void writeExr(const std::string& path, const ImageRgba32f& image);
 
 // Writes an 8-bit RGBA PNG from bytes already encoded (e.g. tone-mapped sRGB).
 void writePng(const std::string& path, int width, int height, std::span<const uint8_t> rgba8);
+// Writes an animated GIF of sRGB RGBA8 frames (each width x height, as writePng takes them),
+// looping forever, written whole or not at all like the others. GIF keeps 256 colours a frame.
+void writeAnimatedGif(const std::string& path, int width, int height,
+                      std::span<const std::vector<uint8_t>> frames, int framesPerSecond);
 
 // Reads any image OpenImageIO understands, converted to float RGBA (missing channels: G=B=R for
 // grey, A=1). Pixel values are the file's own (no colour-space conversion).

@@ -82,4 +82,30 @@ void writeFalseColourError(const std::string& pngPath, int width, int height,
 double percentileAbsError(std::span<const glm::dvec3> test, std::span<const glm::dvec3> reference,
                           double q);
 
+// Means of `block` x `block` pixel blocks of a width x height image over the pixels whose
+// `valid` entry is not 0 (all, when `valid` is empty); partial blocks at the right and bottom
+// edges are dropped. A block is valid when at least half of its pixels are; an invalid block's
+// mean is 0. The flicker figure compares block means: the per-pixel noise of a reference (a
+// path tracer's, or a VPL gather's point-like highlights) averages out, while a VSGL's jump,
+// which lights many pixels at once, does not (docs/flicker.md).
+struct BlockMeans {
+  uint32_t width = 0, height = 0;  // in blocks
+  std::vector<glm::dvec3> means;
+  std::vector<uint8_t> valid;
+};
+BlockMeans blockMeans(std::span<const glm::dvec3> image, uint32_t width, uint32_t height,
+                      uint32_t block, std::span<const uint8_t> valid = {});
+
+// Flicker between two consecutive frames (docs/flicker.md): the RMS over pixels and channels of
+// the change of the error image, (I_t - R_t) - (I_t-1 - R_t-1), over the mean channel value of
+// the two reference frames (the plain RMS when both are black). Motion that the reference shows
+// moves I and R alike and cancels, so what is left is change the reference does not have. It
+// is exactly 0 when neither image changed. Every image must be finite and of one size. With a
+// `valid` mask (one entry per pixel), pixels whose entry is 0 are left out: a moving camera's
+// caller passes the previous frame reprojected and leaves out what it could not reproject.
+double temporalError(std::span<const glm::dvec3> previous, std::span<const glm::dvec3> current,
+                     std::span<const glm::dvec3> previousReference,
+                     std::span<const glm::dvec3> currentReference,
+                     std::span<const uint8_t> valid = {});
+
 }  // namespace engine

@@ -1,0 +1,362 @@
+// vsgl_flicker: temporal-flicker captures (docs/flicker.md). One animated sequence (motion.h) of
+// a scene, rendered by every method through the public API, as a host would, and by a CPU
+// reference. The methods keep their state from frame to frame (k-means starts from its previous
+// centres), and each first renders --warmup frames of the first frame, so that the capture sees
+// them in their steady state. Two flicker figures per frame and method:
+//   - image flicker: engine::temporalError of the indirect light's 8 x 8 block means against the
+//     reference's (change the reference does not show), the previous frame reprojected when the
+//     camera moves (reprojection.h);
+//   - VSGL power change: sum over VSGLs i of |Phi_i(t) - Phi_i(t-1)| over sum of Phi_i(t-1)
+//     (luminance; VSGL i is lattice point i, or k-means cluster i).
+// It writes numbered EXR/PNG frames per method, a preview strip, an animated GIF, flicker.csv
+// and flicker_summary.{json,csv}.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "cli_values.h"
+#include "engine/gbuffer.h"
+#include "engine/gbuffer_reference.h"
+#include "engine/image_metrics.h"
+#include "engine/rasterizer.h"
+#include "engine/tonemap.h"
+#include "gi_host.h"
+#include "motion.h"
+#include "path_tracer.h"
+#include "preview.h"
+#include "program_exit.h"
+#include "reference_cache.h"
+#include "reprojection.h"
+#include "scene_files.h"
+#include "vpl_gather.h"
+
+namespace {
+
+using nlohmann::json;
+
+struct Options {
+  std::string scene = "checker";
+  std::string motion = "orbit";
+  uint32_t frames = 16;
+  uint32_t width = 160, height = 90;
+  uint32_t count = 128;
+  uint32_t block = 8;
+  uint32_t warmup = 32;
+  std::vector<std::string> methods = {"tok15", "modified", "modified-k4", "kmeans-2d", "kmeans-3d"};
+  std::string pdf = "brsm";
+  std::string reference = "vpl";
+  uint32_t vplRsm = 32;
+  float noise = 0.05f;
+  std::string outDir = "flicker";
+  samples::CommonOptions common;  // --device, --validation, --help
+};
+
+const char* usage() {
+  return "usage: vsgl_flicker [options]\n"
+         "  --scene NAME|FILE  built-in scene (cornell, atrium, checker) or .gltf/.glb (default "
+         "checker)\n"
+         "  --motion M         static, orbit (camera), sweep (light) or move (a box) (default "
+         "orbit)\n"
+         "  --frames N         frames in the sequence, 2..1000 (default 16)\n"
+         "  --width N --height N  image size, 1..4096 (default 160x90)\n"
+         "  --count N          VSGLs, 1..65535 (default 128)\n"
+         "  --warmup N         frames of the first frame each method renders first, 0..1000\n"
+         "                     (default 32: k-means converges from its seeds)\n"
+         "  --block N          the image flicker compares N x N pixel block means, 1..64 (1 =\n"
+         "                     per pixel; default 8)\n"
+         "  --methods LIST     comma-separated: tok15, modified, kmeans-2d, kmeans-3d; a filtered\n"
+         "                     method takes a kernel scale as -kK (modified-k4) (default\n"
+         "                     tok15,modified,modified-k4,kmeans-2d,kmeans-3d)\n"
+         "  --pdf KIND         brsm (view-dependent) or flux (default brsm)\n"
+         "  --reference KIND   vpl (brute-force VPL gather, exact visibility) or path (path\n"
+         "                     tracer, cached under <out>/cache) (default vpl)\n"
+         "  --vpl-rsm N        the VPL gather's RSM side, 16..512 (default 32)\n"
+         "  --noise R          the path tracer's relative standard error, 0.001..0.5 (default "
+         "0.05)\n"
+         "  --out DIR          output directory (default flicker)\n"
+         "  --device SEL       Vulkan device index or name substring\n"
+         "  --validation       enable the Khronos validation layer\n";
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  for (samples::Arguments args(argc, argv); args.next();) {
+    const std::string_view arg = args.option();
+    if (arg == "--scene")
+      o.scene = args.value();
+    else if (arg == "--motion")
+      o.motion = args.value();
+    else if (arg == "--frames")
+      o.frames = samples::parseUint(arg, args.value(), 2, 1000);
+    else if (arg == "--width")
+      o.width = samples::parseUint(arg, args.value(), 1, 4096);
+    else if (arg == "--height")
+      o.height = samples::parseUint(arg, args.value(), 1, 4096);
+    else if (arg == "--count")
+      o.count = samples::parseUint(arg, args.value(), 1, 65535);
+    else if (arg == "--warmup")
+      o.warmup = samples::parseUint(arg, args.value(), 0, 1000);
+    else if (arg == "--block")
+      o.block = samples::parseUint(arg, args.value(), 1, 64);
+    else if (arg == "--methods")
+      o.methods = samples::parseList(arg, args.value());
+    else if (arg == "--pdf")
+      o.pdf = samples::parseChoice<std::string>(arg, args.value(),
+                                                {{"brsm", "brsm"}, {"flux", "flux"}});
+    else if (arg == "--reference")
+      o.reference =
+          samples::parseChoice<std::string>(arg, args.value(), {{"vpl", "vpl"}, {"path", "path"}});
+    else if (arg == "--vpl-rsm")
+      o.vplRsm = samples::parseUint(arg, args.value(), 16, 512);
+    else if (arg == "--noise")
+      o.noise = samples::parseFloat(arg, args.value(), 0.001f, 0.5f);
+    else if (arg == "--out")
+      o.outDir = args.value();
+    else
+      samples::parseCommonOption(arg, args, o.common);
+  }
+  if (o.outDir.empty()) throw engine::Error("--out: empty path");
+  if (o.block > std::min(o.width, o.height))
+    throw engine::Error("--block: " + std::to_string(o.block) + " is larger than the image");
+  return o;
+}
+
+// A --methods word as module settings: "<method>" or, for tok15 and modified, "<method>-k<K>".
+gi::Settings methodSettings(const std::string& word, const Options& o) {
+  gi::Settings s;
+  s.vsglCount = o.count;
+  s.brsm.gridSize = std::min(s.brsm.gridSize, s.rsmSize);
+  s.pdf = o.pdf == "flux" ? gi::PdfKind::Flux : gi::PdfKind::Brsm;
+  std::string method = word;
+  if (const size_t k = word.find("-k"); k != std::string::npos && word.rfind("kmeans", 0) != 0) {
+    method = word.substr(0, k);
+    s.kernelScale = samples::parseFloat("--methods", word.substr(k + 2), 1.0f, float(o.count));
+  }
+  if (method == "tok15")
+    s.rule = gi::KernelRule::Tok15;
+  else if (method == "kmeans-2d")
+    s.method = gi::VsglMethod::KmeansImage;
+  else if (method == "kmeans-3d")
+    s.method = gi::VsglMethod::KmeansWorld;
+  else if (method != "modified")
+    throw engine::Error("--methods: '" + word +
+                        "' is not one of tok15, modified (each with an optional -kK), kmeans-2d, "
+                        "kmeans-3d");
+  if (std::string bad = gi::validateSettings(s); !bad.empty()) throw engine::Error(bad);
+  return s;
+}
+
+std::vector<glm::dvec3> toDouble(const samples::Indirect& indirect) {
+  std::vector<glm::dvec3> image(indirect.diffuse.pixels.size() / 4);
+  for (size_t i = 0; i < image.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      image[i][c] = double(indirect.diffuse.pixels[4 * i + c]) + indirect.glossy.pixels[4 * i + c];
+  return image;
+}
+
+engine::ImageRgba32f toImage(const std::vector<glm::dvec3>& pixels, uint32_t width,
+                             uint32_t height) {
+  engine::ImageRgba32f image{int(width), int(height), std::vector<float>(pixels.size() * 4, 1.0f)};
+  for (size_t i = 0; i < pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) image.pixels[4 * i + c] = float(pixels[i][c]);
+  return image;
+}
+
+// Per VSGL, the luminance of both lobes' power.
+std::vector<double> vsglPowers(const std::vector<gpu::Vsgl>& vsgls) {
+  std::vector<double> power;
+  for (const gpu::Vsgl& v : vsgls) power.push_back(double(v.diffuse.power.a) + v.specular.power.a);
+  return power;
+}
+
+double powerChange(const std::vector<double>& previous, const std::vector<double>& current) {
+  double change = 0.0, total = 0.0;
+  for (size_t i = 0; i < current.size(); ++i) {
+    change += std::abs(current[i] - previous[i]);
+    total += previous[i];
+  }
+  return total > 0.0 ? change / total : change;
+}
+
+// The image flicker figure: engine::temporalError over o.block x o.block block means of the
+// reprojected previous frame and this one, for the method and the reference alike.
+double blockFlicker(const std::vector<glm::dvec3>& previous, const std::vector<glm::dvec3>& current,
+                    const std::vector<glm::dvec3>& previousReference,
+                    const std::vector<glm::dvec3>& currentReference,
+                    const std::vector<uint8_t>& valid, const Options& o) {
+  auto means = [&](const std::vector<glm::dvec3>& image) {
+    return engine::blockMeans(image, o.width, o.height, o.block, valid);
+  };
+  const engine::BlockMeans p = means(previous), c = means(current);
+  return engine::temporalError(p.means, c.means, means(previousReference).means,
+                               means(currentReference).means, c.valid);
+}
+
+struct Capture {
+  std::string name;
+  std::unique_ptr<gi::IndirectLighting> lighting;
+  std::vector<glm::dvec3> previous;
+  std::vector<double> previousPower;
+  double flickerSum = 0.0, powerChangeSum = 0.0, relativeMseSum = 0.0;
+  std::vector<engine::ImageRgba32f> frames;  // linear, for the preview
+};
+
+int run(const Options& o) {
+  if (o.common.help) {
+    std::printf("%s", usage());
+    return 0;
+  }
+  const flicker::Motion motion = flicker::parseMotion(o.motion);
+  const engine::Scene base = samples::loadScene(o.scene);
+  const engine::Light* light = samples::bouncingLight(base);
+  if (!light) throw engine::Error(o.scene + ": no spot or directional light to bounce");
+  const auto lightIndex = static_cast<uint32_t>(light - base.lights.data());
+  std::vector<gi::Settings> settings;
+  for (const std::string& word : o.methods) settings.push_back(methodSettings(word, o));
+  const std::filesystem::path out(o.outDir);
+  samples::createOutputDirectory(o.outDir);
+  for (const std::string& name : o.methods) samples::createOutputDirectory((out / name).string());
+  samples::createOutputDirectory((out / "reference").string());
+  const truth::ReferenceCache cache((out / "cache").string());
+
+  engine::Context ctx({o.common.validation, o.common.device});
+  engine::Rasterizer rasterizer(ctx);
+  engine::GBufferResolve resolve(ctx);
+  engine::GBuffer gbuffer = engine::createGBuffer(ctx, o.width, o.height);
+  engine::Buffer visibility(ctx, engine::Rasterizer::visibilityBytes(o.width, o.height),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
+  std::unique_ptr<engine::SceneGpu> gpuScene;
+  std::vector<Capture> captures;  // after the context: the modules go before the device does
+  std::vector<engine::ImageRgba32f> referenceFrames;
+  std::vector<glm::dvec3> previousReference;
+  engine::GBufferData previousGBuffer;
+  engine::View previousView;
+  engine::ToneMapSettings toneMap;  // one exposure for the whole capture: set from frame 0
+  std::ofstream csv(out / "flicker.csv");
+  csv << "frame,method,image_flicker,vsgl_power_change,relative_mse\n";
+
+  for (uint32_t t = 0; t < o.frames; ++t) {
+    const flicker::Frame f =
+        flicker::makeFrame(base, lightIndex, motion, t, o.frames, o.width, o.height);
+    if (!gpuScene || motion == flicker::Motion::Move)  // every earlier submission has completed
+      gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, f.scene));
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      rasterizer.record(cmd, *gpuScene, f.view.viewProj, {&visibility, 0, o.width, o.height});
+      resolve.record(cmd, *gpuScene, visibility, f.view, gbuffer);
+    });
+
+    // The reference of this frame.
+    std::vector<glm::dvec3> reference(size_t{o.width} * o.height);
+    if (o.reference == "vpl") {
+      const truth::EmbreeScene rays(f.scene);
+      const truth::VplGatherImage g = truth::vplGather(
+          f.scene, rays, f.view, truth::rsmVpls(f.scene, rays, f.lightIndex, o.vplRsm));
+      for (size_t i = 0; i < reference.size(); ++i) reference[i] = g.diffuse[i] + g.glossy[i];
+    } else {
+      truth::PathTraceSettings trace;
+      trace.relativeError = o.noise;
+      const truth::PathTraceImage p =
+          truth::cachedPathTrace(cache, f.scene, f.view, f.lightIndex, trace);
+      for (size_t i = 0; i < reference.size(); ++i) reference[i] = p.diffuse[i] + p.glossy[i];
+    }
+    const engine::ImageRgba32f referenceImage = toImage(reference, o.width, o.height);
+    if (t == 0) toneMap.exposureEv = std::log2(engine::exposureScale(referenceImage, toneMap));
+    char stem[32];
+    std::snprintf(stem, sizeof(stem), "frame_%04u", t);
+    samples::writePair((out / "reference" / stem).string(), referenceImage, toneMap);
+    referenceFrames.push_back(referenceImage);
+
+    // The previous frame seen from this one (identity unless the camera moved).
+    const engine::GBufferData decoded = engine::readbackGBuffer(ctx, gbuffer);
+    flicker::Reprojection reprojection;
+    std::vector<glm::dvec3> previousReferenceAligned;
+    if (t > 0) {
+      reprojection = flicker::reproject(previousGBuffer, previousView, decoded, f.view);
+      previousReferenceAligned = flicker::resample(previousReference, reprojection);
+    }
+    const gi::FrameInput input = samples::frameInput(gbuffer, f.view, f.scene.lights[f.lightIndex]);
+    for (size_t m = 0; m < o.methods.size(); ++m) {
+      if (t == 0) {
+        captures.push_back({o.methods[m], samples::createIndirect(ctx, settings[m], o.width,
+                                                                  o.height, *gpuScene, f.scene)});
+      } else if (motion == flicker::Motion::Move) {
+        samples::check(captures[m].lighting->setScene(samples::sceneGeometry(*gpuScene, f.scene)));
+      }
+      Capture& c = captures[m];
+      gi::FrameOutput output;
+      for (uint32_t w = 0; w <= (t == 0 ? o.warmup : 0); ++w)
+        ctx.submitAndWait(
+            [&](VkCommandBuffer cmd) { samples::check(c.lighting->record(cmd, input, &output)); });
+      const std::vector<glm::dvec3> image =
+          toDouble(samples::readIndirect(ctx, output, o.width, o.height));
+      const std::vector<double> power = vsglPowers(samples::readVsgls(ctx, output));
+      const double relativeMse = engine::compareImages(image, reference).relativeMse;
+      c.relativeMseSum += relativeMse;
+      csv << t << "," << c.name << ",";
+      if (t > 0) {
+        const double flicker =
+            blockFlicker(flicker::resample(c.previous, reprojection), image,
+                         previousReferenceAligned, reference, reprojection.valid, o);
+        const double change = powerChange(c.previousPower, power);
+        c.flickerSum += flicker;
+        c.powerChangeSum += change;
+        csv << flicker << "," << change;
+      } else {
+        csv << ",";
+      }
+      csv << "," << relativeMse << "\n";
+      c.frames.push_back(toImage(image, o.width, o.height));
+      samples::writePair((out / c.name / stem).string(), c.frames.back(), toneMap);
+      c.previous = image;
+      c.previousPower = power;
+    }
+    previousReference = reference;
+    previousGBuffer = decoded;
+    previousView = f.view;
+    std::printf("frame %u/%u\n", t + 1, o.frames);
+    std::fflush(stdout);
+  }
+
+  // The summary: per method the mean of each figure over the frame pairs.
+  json summary = {{"scene", o.scene},         {"motion", o.motion},
+                  {"frames", o.frames},       {"warmup", o.warmup},
+                  {"width", o.width},         {"height", o.height},
+                  {"count", o.count},         {"pdf", o.pdf},
+                  {"reference", o.reference}, {"block", o.block},
+                  {"methods", json::array()}};
+  const double pairs = double(o.frames - 1);
+  std::printf("%-14s %14s %18s %12s\n", "method", "image flicker", "VSGL power change",
+              "mean relMSE");
+  for (const Capture& c : captures) {
+    summary["methods"].push_back({{"name", c.name},
+                                  {"image_flicker", c.flickerSum / pairs},
+                                  {"vsgl_power_change", c.powerChangeSum / pairs},
+                                  {"relative_mse", c.relativeMseSum / double(o.frames)}});
+    std::printf("%-14s %14.6f %18.6f %12.5f\n", c.name.c_str(), c.flickerSum / pairs,
+                c.powerChangeSum / pairs, c.relativeMseSum / double(o.frames));
+  }
+  std::ofstream(out / "flicker_summary.json") << summary.dump(2) << "\n";
+  std::ofstream table(out / "flicker_summary.csv");
+  table << "method,image_flicker,vsgl_power_change,relative_mse\n";
+  for (const json& m : summary["methods"])
+    table << m["name"].get<std::string>() << "," << m["image_flicker"] << ","
+          << m["vsgl_power_change"] << "," << m["relative_mse"] << "\n";
+
+  std::vector<flicker::PreviewRow> rows = {{"reference", referenceFrames}};
+  for (const Capture& c : captures) rows.push_back({c.name, c.frames});
+  flicker::writeStrip((out / "preview.png").string(), rows, toneMap);
+  flicker::writeGif((out / "preview.gif").string(), rows, toneMap);
+  std::printf(
+      "wrote %s: frames per method, flicker.csv, flicker_summary.{json,csv}, "
+      "preview.png, preview.gif\n",
+      o.outDir.c_str());
+  return samples::validationExitStatus(ctx, "vsgl_flicker");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return samples::guardedMain("vsgl_flicker", [&] { return run(parseOptions(argc, argv)); });
+}

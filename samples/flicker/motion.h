@@ -1,0 +1,35 @@
+// The animated sequences of vsgl_flicker (docs/flicker.md): the scene, camera and light of frame
+// t of a motion. Each motion moves one thing, so that a capture shows the flicker that one kind
+// of change causes:
+//   static  nothing moves (every flicker figure must be exactly 0: the pipeline is deterministic)
+//   orbit   the camera turns 30 degrees about the vertical axis through the scene's centre: the
+//           view-dependent BRSM PDF changes, the RSM does not
+//   sweep   the bounced light turns 20 degrees about the vertical axis: the RSM itself changes
+//   move    a box, added to the scene, slides across the floor (a third of the scene's width)
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "engine/scene.h"
+#include "engine/view.h"
+
+namespace flicker {
+
+enum class Motion { Static, Orbit, Sweep, Move };
+
+// --motion's words; throws engine::Error naming them for anything else.
+Motion parseMotion(const std::string& word);
+
+struct Frame {
+  engine::Scene scene;  // with the light moved (sweep) or the box placed (move)
+  engine::View view;
+  uint32_t lightIndex = 0;  // of the bounced light in scene.lights
+};
+
+// Frame t of `frames` (t = 0 .. frames - 1) of `motion` applied to `base`, whose bounced light is
+// base.lights[lightIndex], seen at width x height.
+Frame makeFrame(const engine::Scene& base, uint32_t lightIndex, Motion motion, uint32_t t,
+                uint32_t frames, uint32_t width, uint32_t height);
+
+}  // namespace flicker
