@@ -33,7 +33,7 @@ class Arguments {
 
 // The options at the end of every sample program's command line.
 struct CommonOptions {
-  std::string device;  // --device SEL: index or name substring ("" = VSGL_DEVICE or automatic)
+  std::string device;       // --device SEL: index or name substring ("" = VSGL_DEVICE or automatic)
   bool validation = false;  // --validation
   bool help = false;        // --help, -h
 };

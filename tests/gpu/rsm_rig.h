@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "engine/builtin_scenes.h"
 #include "engine/rasterizer.h"
@@ -16,7 +17,10 @@ namespace testing_gpu {
 struct RsmRig {
   // Light 0 of built-in scene `name`, an RSM of size^2 texels and its attribute pyramids.
   RsmRig(engine::Context& ctx, const std::string& name, uint32_t size)
-      : scene(engine::makeBuiltinScene(name)),
+      : RsmRig(ctx, engine::makeBuiltinScene(name), size) {}
+  // The same for any scene: its light 0.
+  RsmRig(engine::Context& ctx, engine::Scene sceneIn, uint32_t size)
+      : scene(std::move(sceneIn)),
         light(scene.lights.at(0)),
         view(gi::makeRsmView(scene, light, size)),
         gpuScene(std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, scene))),

@@ -15,6 +15,7 @@
 #include "passes/vsgl_attributes.h"
 #include "passes/vsgl_generate.h"
 #include "reference/vsgl_sampling.h"
+#include "rsm_rig.h"
 #include "shared/vsgl.h"
 #include "shared/vsgl_attributes.h"
 
@@ -209,6 +210,73 @@ TEST_F(StabilityGeneration, HugeDynamicRangeInFp32) {
     }
   }
   EXPECT_NEAR(sum, total(), 0.02 * total());
+}
+
+// Case 6: the Cornell box moved 100 m away along x and z. A variance taken as P2 / W - |P1 / W|^2
+// in world coordinates would cancel there to garbage: |y|^2 ~ 2e4 m^2 rounds by ~1e-3 m^2, the
+// size of the variances themselves. Positions relative to the light keep the VSGLs what they were:
+// - the same kernels, up to the warp's tie flips (at most 2 % of N, as
+//   GeneratedVsglsMatchReferenceForBothRules allows);
+// - powers within 1e-3 relative;
+// - means relative to the light within delta = 5e-4 m. The RSM differs by the rasterizer's fp32
+//   transform of vertices 141 m from the origin: each rounding there is 141 m x 2^-24 =
+//   8.4e-6 m, and the world-to-clip transform and depth reconstruction take a few tens of them;
+//   measured 1.45e-4 m;
+// - variances within 2 sqrt(v) delta + delta^2 (what moving the points by delta can do to a
+//   spread of sqrt(v)) plus 1e-4 relative.
+// Further out, that rasterization limit grows faster than the offset: at 1 km the means moved
+// 1.75 cm (docs/techniques/stability.md).
+TEST_F(StabilityGeneration, TranslationInvariance) {
+  const glm::vec3 offset(100.0f, 0.0f, 100.0f);
+  const double delta = 5e-4;
+  engine::Scene moved = engine::makeBuiltinScene("cornell");
+  for (glm::vec3& p : moved.positions) p += offset;
+  for (engine::Light& l : moved.lights) l.position += offset;
+  for (engine::Camera& c : moved.cameras) c.cameraToWorld[3] += glm::vec4(offset, 0.0f);
+  const uint32_t n = 256;
+  auto generateFor = [&](engine::Scene scene, glm::vec3& lightPosition) {
+    testing_gpu::RsmRig rig(ctx(), std::move(scene), 128);
+    rig.buildAttributes(ctx());
+    lightPosition = rig.light.position;
+    gi::VsglGenerator generator(ctx(), n);
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      generator.record(cmd, *rig.attributes, rig.view, {n, 1.0f, VSGL_RULE_MODIFIED});
+    });
+    auto v = generator.vsgls().readbackAs<gpu::Vsgl>(ctx());
+    v.resize(n);
+    return v;
+  };
+  glm::vec3 nearLight, farLight;
+  const auto near = generateFor(engine::makeBuiltinScene("cornell"), nearLight);
+  const auto far = generateFor(moved, farLight);
+  size_t flips = 0;
+  double worstMean = 0.0, worstVariance = 0.0;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (glm::length(glm::vec2(near[i].kernel) - glm::vec2(far[i].kernel)) > 2e-5f ||
+        std::abs(near[i].kernel.z - far[i].kernel.z) > 2e-3f) {
+      ++flips;
+      continue;
+    }
+    for (const auto& [a, b] : {std::pair{near[i].diffuse, far[i].diffuse},
+                               std::pair{near[i].specular, far[i].specular}}) {
+      if (!(a.power.w > 0.0f)) continue;
+      const glm::dvec3 meanNear = glm::dvec3(glm::vec3(a.meanVariance)) - glm::dvec3(nearLight);
+      const glm::dvec3 meanFar = glm::dvec3(glm::vec3(b.meanVariance)) - glm::dvec3(farLight);
+      worstMean = std::max(worstMean, glm::length(meanNear - meanFar));
+      EXPECT_LE(glm::length(meanNear - meanFar), delta) << "VSGL " << i;
+      const double dv = std::abs(double(a.meanVariance.w) - b.meanVariance.w);
+      worstVariance = std::max(worstVariance, dv);
+      EXPECT_GE(b.meanVariance.w, 0.0f) << "VSGL " << i;
+      const double v = std::abs(a.meanVariance.w);
+      EXPECT_LE(dv, 2.0 * std::sqrt(v) * delta + delta * delta + 1e-4 * v) << "VSGL " << i;
+      EXPECT_NEAR(a.power.w, b.power.w, 1e-3 * a.power.w) << "VSGL " << i;
+    }
+  }
+  std::printf(
+      "translation by 141 m: %zu tie flips, worst mean shift %.2e m, worst variance "
+      "change %.2e m^2\n",
+      flips, worstMean, worstVariance);
+  EXPECT_LE(flips, n / 50);
 }
 
 }  // namespace
