@@ -5,6 +5,7 @@
 //   -> shading -> [debug visibility].
 #include "gi/indirect_lighting.h"
 
+#include <algorithm>
 #include <optional>
 
 #include "engine/commands.h"
@@ -109,6 +110,8 @@ struct IndirectLighting::Impl {
   }
 
   void record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out);
+  // Both outputs cleared to black, visible to the host's next reads like the shaded ones.
+  void recordBlackOutputs(VkCommandBuffer cmd);
   // The VSGLs of this frame: sampled with FIS or clustered with k-means.
   const engine::Buffer& recordVsgls(VkCommandBuffer cmd, const RsmView& rsmView, uint32_t rule);
 
@@ -118,6 +121,8 @@ struct IndirectLighting::Impl {
   uint32_t width, height;
   std::optional<engine::SceneGpu> scene;
   engine::Bounds bounds;
+  float maxReflectance = 1.0f;  // SceneGeometry::maxReflectance
+  FramePlan plan;               // of the last recorded frame
   engine::Rasterizer rasterizer;
   engine::GBufferResolve resolve;
   MipPyramid mips;
@@ -134,6 +139,37 @@ struct IndirectLighting::Impl {
   std::optional<engine::Image> debugVisibility;  // created with the first debug frame
   engine::GpuProfiler profiler;
 };
+
+namespace {
+
+// The effect planner (docs/integration.md, "The effect planner"): which passes this frame needs.
+// Each decision leaves out only work whose result is exactly zero or never read.
+FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance) {
+  FramePlan plan;
+  plan.visibility = s.ismEnabled;
+  plan.glossy = s.glossy;
+  plan.skySkipped = s.planner.skipSky;
+  if (!s.ismEnabled) plan.reasons.push_back("ism: off in the settings: no ISM build or test");
+  if (!s.glossy) plan.reasons.push_back("glossy: off in the settings: no glossy shading");
+  if (s.planner.skipSky)
+    plan.reasons.push_back("sky: subgroups that see only sky skip the VSGL loop");
+  const float power = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+  if (s.planner.skipWithoutBounce && !(power > 0.0f)) {
+    plan.bounce = false;
+    plan.reasons.push_back(
+        "light: no power (intensity x colour = 0): no RSM, PDF, VSGL, ISM or shading pass; "
+        "black outputs");
+  } else if (s.planner.skipWithoutBounce && !(maxReflectance > 0.0f)) {
+    plan.bounce = false;
+    plan.reasons.push_back(
+        "scene: no surface reflects (SceneGeometry.maxReflectance = 0): no RSM, PDF, VSGL, ISM "
+        "or shading pass; black outputs");
+  }
+  if (!plan.bounce) plan.visibility = plan.glossy = plan.skySkipped = false;
+  return plan;
+}
+
+}  // namespace
 
 void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out) {
   const GBufferImages& g = in.gbuffer;
@@ -162,12 +198,26 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
   const uint32_t rule = static_cast<uint32_t>(settings.rule);
 
+  plan = planFrame(settings, in.light, maxReflectance);
+
   ctx.recordDeferredSetup(cmd);
   profiler.beginFrame(cmd);
   const engine::Buffer* vsgls = nullptr;  // this frame's, from filtered sampling or k-means
   {
     engine::ProfileScope frame(&profiler, cmd, "frame");
     acquireHostImages(cmd, gbuffer);
+    if (!plan.bounce) {
+      recordBlackOutputs(cmd);
+      out = {};
+      out.indirectDiffuse = {indirect.diffuse.handle(), indirect.diffuse.view(),
+                             indirect.diffuse.layout()};
+      out.indirectGlossy = {indirect.glossy.handle(), indirect.glossy.view(),
+                            indirect.glossy.layout()};
+      out.vsgls = generator.vsgls().handle();
+      out.vsglCount = 0;
+      out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
+      return;
+    }
     const bool brsm = settings.pdf == PdfKind::Brsm;
     // [S3] generates the importance VSGLs with the rule under test and K = 1.
     if (brsm)
@@ -185,8 +235,9 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
       ismPointsStale = false;
       ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
     }
-    const uint32_t flags = (settings.glossy ? VSGL_SHADE_GLOSSY : 0u) |
-                           (settings.ismEnabled ? VSGL_SHADE_VISIBILITY : 0u);
+    const uint32_t flags = (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) |
+                           (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
+                           (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u);
     shade.record(cmd, gbuffer, camera.invViewProj,
                  {vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()}, indirect,
                  &profiler);
@@ -217,6 +268,17 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   out.vsgls = vsgls->handle();
   out.vsglCount = settings.vsglCount;
   out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
+}
+
+void IndirectLighting::Impl::recordBlackOutputs(VkCommandBuffer cmd) {
+  const VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
+  const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  engine::computeToTransferBarrier(cmd);
+  for (engine::Image* image : {&indirect.diffuse, &indirect.glossy})
+    vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &black, 1, &all);
+  engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                        VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
 const engine::Buffer& IndirectLighting::Impl::recordVsgls(VkCommandBuffer cmd,
@@ -272,6 +334,9 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
                    std::to_string(s.triangleCount) + " triangles need");
   if (!glm::all(glm::lessThanEqual(s.boundsMin, s.boundsMax)))
     return failure("SceneGeometry.boundsMin: not below boundsMax on every axis");
+  if (!(s.maxReflectance >= 0.0f && s.maxReflectance <= 1.0f))
+    return failure("SceneGeometry.maxReflectance: " + std::to_string(s.maxReflectance) +
+                   " is outside [0, 1]");
   engine::SceneGpu scene;
   scene.vertices = engine::Buffer::borrow(s.vertices, s.vertexBytes);
   scene.indices = engine::Buffer::borrow(s.indices, s.indexBytes);
@@ -288,6 +353,7 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
   impl_->scene = std::move(scene);
   impl_->ismPointsStale = true;
   impl_->bounds = {s.boundsMin, s.boundsMax};
+  impl_->maxReflectance = s.maxReflectance;
   return {};
 }
 
@@ -316,6 +382,10 @@ Status IndirectLighting::record(VkCommandBuffer cmd, const FrameInput& input, Fr
     return failure(e.what());
   }
   return {};
+}
+
+const FramePlan& IndirectLighting::lastPlan() const {
+  return impl_->plan;
 }
 
 std::vector<PassTime> IndirectLighting::lastFrameTimes() const {

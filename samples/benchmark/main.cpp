@@ -222,6 +222,7 @@ std::vector<json> runRows(engine::Context& ctx, const bench::Preset& p, SceneRun
             double(indirect.diffuse.pixels[4 * j + c]) + indirect.glossy.pixels[4 * j + c];
     rows.push_back({{"passes", passes},
                     {"error", errorRecord(image, s.reference, p)},
+                    {"plan", lightings[i]->lastPlan().reasons},
                     {"peak_resident_mb", peakResidentMegabytes()}});
   }
   return rows;

@@ -1,7 +1,10 @@
 #include "gi_host.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+
+#include "engine/tonemap.h"
 
 namespace samples {
 
@@ -14,6 +17,35 @@ const engine::Light* bouncingLight(const engine::Scene& scene) {
     if (light.type == engine::LightType::Spot || light.type == engine::LightType::Directional)
       return &light;
   return nullptr;
+}
+
+float maxReflectance(const engine::Scene& scene) {
+  // The largest byte of a texture channel, over every texel.
+  auto textureMax = [&](int index, int channel) {
+    if (index < 0) return 1.0f;
+    uint8_t m = 0;
+    const std::vector<uint8_t>& t = scene.textures.at(size_t(index)).rgba8;
+    for (size_t i = size_t(channel); i < t.size(); i += 4) m = std::max(m, t[i]);
+    return float(m) / 255.0f;
+  };
+  auto textureMin = [&](int index, int channel) {
+    if (index < 0) return 1.0f;
+    uint8_t m = 255;
+    const std::vector<uint8_t>& t = scene.textures.at(size_t(index)).rgba8;
+    for (size_t i = size_t(channel); i < t.size(); i += 4) m = std::min(m, t[i]);
+    return float(m) / 255.0f;
+  };
+  float bound = 0.0f;
+  for (const engine::Material& m : scene.materials) {
+    // albedo = base (1 - metallic) <= base; F0 = mix(0.04, base, metallic) <= max(0.04, base).
+    float base = 0.0f;
+    for (int c = 0; c < 3; ++c)
+      base = std::max(
+          base, m.baseColorFactor[c] * engine::srgbToLinear(textureMax(m.baseColorTexture, c)));
+    const float metallicMin = m.metallicFactor * textureMin(m.metallicRoughnessTexture, 2);
+    bound = std::max({bound, base, metallicMin < 1.0f ? 0.04f : 0.0f});
+  }
+  return std::min(bound, 1.0f);
 }
 
 gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::Scene& scene) {
@@ -33,6 +65,7 @@ gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::
   const engine::Bounds bounds = scene.bounds();
   geometry.boundsMin = bounds.min;
   geometry.boundsMax = bounds.max;
+  geometry.maxReflectance = maxReflectance(scene);
   return geometry;
 }
 

@@ -24,7 +24,11 @@ void check(const gi::Status& status);
 // support point lights yet), or null.
 const engine::Light* bouncingLight(const engine::Scene& scene);
 
-// `gpuScene`'s buffers and images as the API's plain handles, with `scene`'s bounds.
+// An upper bound of any surface's reflectance in `scene` (SceneGeometry::maxReflectance): the
+// largest channel of a diffuse albedo or F0, textures included.
+float maxReflectance(const engine::Scene& scene);
+// `gpuScene`'s buffers and images as the API's plain handles, with `scene`'s bounds and
+// reflectance bound.
 gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::Scene& scene);
 
 // The module on `ctx`'s device for a width x height G-buffer, with `scene`'s geometry set.

@@ -103,6 +103,10 @@ int run(const render::Options& o) {
         passTimes.add("gi " + pass.name, pass.ms, pass.dispatches);
   }
   passTimes.print(o.frames, indirect ? o.gi.vsglCount : 0, o.width * o.height);
+  // The effect planner's decisions for the last frame: what it left out, and why.
+  if (indirect)
+    for (const std::string& reason : indirect->lastPlan().reasons)
+      std::printf("plan: %s\n", reason.c_str());
   // The machine's FMA and memory peaks in the same run, to read the pass times against
   // (benchmarks report fractions of them; absolute times on a shared machine drift).
   const engine::FmaPeak peak = engine::measureFmaPeak(ctx);
@@ -127,7 +131,7 @@ int run(const render::Options& o) {
     engine::writePng(
         base + "_vsgls.png", image.width, image.height,
         render::drawVsglLobes(frameRgba, image.width, image.height, vsgls, view.viewProj));
-    if (o.gi.ismEnabled) {
+    if (o.gi.ismEnabled && output.vsglCount > 0) {
       // One more frame with the chosen VSGL's visibility written out.
       const uint32_t k = o.debugVsgl >= 0 ? uint32_t(o.debugVsgl) : render::brightestVsgl(vsgls);
       gi::Settings debug = indirect->settings();

@@ -113,6 +113,14 @@ void main() {
   SgGgxReceiver ggx;  // the glossy term's per-pixel part (sg_lighting.glsl)
   if (glossy) ggx = sgGgxReceiver(normal, view, alpha, f0);
 
+  // The planner's sky skip: a subgroup with no pixel to shade has nothing to broadcast for.
+  if ((kFlags & VSGL_SHADE_SKIP_SKY) != 0u && subgroupBallotBitCount(subgroupBallot(shaded)) == 0u) {
+    if (inside) {
+      imageStore(outDiffuse, coord, vec4(0.0, 0.0, 0.0, 1.0));
+      imageStore(outGlossy, coord, vec4(0.0, 0.0, 0.0, 1.0));
+    }
+    return;
+  }
   vec3 diffuseSum = vec3(0.0);  // sum of E e^(l_p) D, times albedo at the end
   vec3 glossySum = vec3(0.0);
   // VSGLs reach the pixels through registers: each lane of a subgroup loads one VSGL of a block

@@ -13,7 +13,8 @@
 // a uniform value (measured: the glossy term cost the same switched off as on).
 #define VSGL_SHADE_GLOSSY 1u      // the GGX term (off: the glossy image is 0)
 #define VSGL_SHADE_VISIBILITY 2u  // ISM visibility per pixel-VSGL pair (off: 1)
-#define VSGL_SHADE_VARIANTS 4u    // every combination of the flags
+#define VSGL_SHADE_SKIP_SKY 4u    // subgroups that see only sky skip the VSGL loop
+#define VSGL_SHADE_VARIANTS 8u    // every combination of the flags
 // Incoming-radiance log amplitudes are clamped here before exp(): e^80 ~ 5.5e34 keeps a
 // receiver touching a zero-variance lobe finite (vsgl-math.md section 12, case 12) and, unlike
 // +inf, never turns into NaN when multiplied by a zero lighting integral.

@@ -40,21 +40,22 @@ class IndirectLightingApiTest : public testing_gpu::GpuTest {
     return {ctx().instance(), ctx().physicalDevice(), ctx().device(), ctx().queueFamily()};
   }
 
-  gi::SceneGeometry geometry() const {
+  gi::SceneGeometry geometry() const { return geometry(*gpuScene_, scene_); }
+  static gi::SceneGeometry geometry(const engine::SceneGpu& gpuScene, const engine::Scene& scene) {
     gi::SceneGeometry g;
-    g.vertices = gpuScene_->vertices.handle();
-    g.vertexBytes = gpuScene_->vertices.size();
-    g.indices = gpuScene_->indices.handle();
-    g.indexBytes = gpuScene_->indices.size();
-    g.triangleMaterials = gpuScene_->triangleMaterials.handle();
-    g.triangleMaterialBytes = gpuScene_->triangleMaterials.size();
-    g.materials = gpuScene_->materials.handle();
-    g.materialBytes = gpuScene_->materials.size();
-    g.triangleCount = gpuScene_->triangleCount;
-    g.baseColorTextures = gpuScene_->baseColorTextures.view();
-    g.dataTextures = gpuScene_->dataTextures.view();
-    g.sampler = gpuScene_->sampler.handle();
-    const engine::Bounds b = scene_.bounds();
+    g.vertices = gpuScene.vertices.handle();
+    g.vertexBytes = gpuScene.vertices.size();
+    g.indices = gpuScene.indices.handle();
+    g.indexBytes = gpuScene.indices.size();
+    g.triangleMaterials = gpuScene.triangleMaterials.handle();
+    g.triangleMaterialBytes = gpuScene.triangleMaterials.size();
+    g.materials = gpuScene.materials.handle();
+    g.materialBytes = gpuScene.materials.size();
+    g.triangleCount = gpuScene.triangleCount;
+    g.baseColorTextures = gpuScene.baseColorTextures.view();
+    g.dataTextures = gpuScene.dataTextures.view();
+    g.sampler = gpuScene.sampler.handle();
+    const engine::Bounds b = scene.bounds();
     g.boundsMin = b.min;
     g.boundsMax = b.max;
     return g;
@@ -230,6 +231,99 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   next.rsmSize = 128;
   EXPECT_FALSE(lighting->setSettings(next));
   EXPECT_EQ(lighting->settings().rsmSize, 64u);
+}
+
+// One frame's outputs and pass count through the public API, with `settings`, `in` and the scene
+// geometry `g` (the G-buffer returns to GENERAL, which the fixture then records).
+struct PlannedFrame {
+  std::vector<glm::vec4> diffuse, glossy;
+  size_t passes = 0;
+  gi::FramePlan plan;
+};
+
+// The effect planner (issue 9): with no light that can bounce, because the light has no power or
+// because no surface reflects, it skips every pass. The outputs are the same as without the
+// planner, where every pass runs and yields exactly 0 (zero flux makes zero VSGL power makes
+// zero light), with fewer passes timed; and the plan says why.
+TEST_F(IndirectLightingApiTest, PlannerSkipsEveryPassWhenNothingCanBounce) {
+  auto run = [&](bool planner, const gi::FrameInput& in, const gi::SceneGeometry& g) {
+    gi::Settings settings = smallSettings();
+    settings.planner.skipWithoutBounce = planner;
+    gi::Status status;
+    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+    EXPECT_TRUE(lighting) << status.message;
+    EXPECT_TRUE(lighting->setScene(g));
+    gi::FrameOutput out;
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, in, &out)); });
+    for (engine::Image* image :
+         {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+      image->setLayout(out.gbufferLayout);
+    return PlannedFrame{readOutput(out.indirectDiffuse), readOutput(out.indirectGlossy),
+                        lighting->lastFrameTimes().size(), lighting->lastPlan()};
+  };
+  auto expectSame = [&](const gi::FrameInput& in, const gi::SceneGeometry& g, const char* why) {
+    SCOPED_TRACE(why);
+    const PlannedFrame on = run(true, in, g), off = run(false, in, g);
+    EXPECT_FALSE(on.plan.bounce);
+    ASSERT_FALSE(on.plan.reasons.empty());
+    EXPECT_NE(on.plan.reasons.back().find(why), std::string::npos) << on.plan.reasons.back();
+    EXPECT_TRUE(off.plan.bounce);
+    EXPECT_LT(on.passes, off.passes);
+    for (size_t i = 0; i < on.diffuse.size(); ++i) {
+      EXPECT_EQ(on.diffuse[i], off.diffuse[i]) << "pixel " << i;
+      EXPECT_EQ(on.glossy[i], off.glossy[i]) << "pixel " << i;
+      EXPECT_EQ(glm::vec3(on.diffuse[i]) + glm::vec3(on.glossy[i]), glm::vec3(0.0f));
+    }
+    std::printf("%s: %zu passes with the planner, %zu without\n", why, on.passes, off.passes);
+  };
+  gi::FrameInput dark = input();
+  dark.light.intensity = 0.0f;
+  expectSame(dark, geometry(), "light: no power");
+
+  engine::Scene black = scene_;  // black metal: no diffuse albedo and F0 = 0
+  for (engine::Material& m : black.materials) {
+    m.baseColorFactor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    m.metallicFactor = 1.0f;
+  }
+  const engine::SceneGpu blackGpu = engine::uploadScene(ctx(), black);
+  gi::SceneGeometry blackGeometry = geometry(blackGpu, black);
+  blackGeometry.maxReflectance = 0.0f;
+  expectSame(input(), blackGeometry, "scene: no surface reflects");
+}
+
+// The planner's sky skip: seen from 6 m outside the Cornell box, most pixels are sky. With
+// and without the skip, every pixel is the same, bit for bit (the skip only leaves out
+// subgroups whose every pixel is sky, which write 0 either way).
+TEST_F(IndirectLightingApiTest, SkySkipLeavesTheImageUnchanged) {
+  engine::Camera camera = scene_.cameras.at(0);
+  camera.cameraToWorld[3] += camera.cameraToWorld[2] * 6.0f;  // 6 m back along its view axis
+  view_ = engine::cameraView(camera, kWidth, kHeight);
+  *gbuffer_ = renderGBuffer(*gpuScene_, view_);
+  std::vector<glm::vec4> images[2];
+  for (bool skip : {false, true}) {
+    gi::Settings settings = smallSettings();
+    settings.planner.skipSky = skip;
+    gi::Status status;
+    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+    ASSERT_TRUE(lighting) << status.message;
+    ASSERT_TRUE(lighting->setScene(geometry()));
+    gi::FrameOutput out;
+    ctx().submitAndWait(
+        [&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, input(), &out)); });
+    EXPECT_EQ(lighting->lastPlan().skySkipped, skip);
+    images[skip] = readOutput(out.indirectDiffuse);
+    const auto glossy = readOutput(out.indirectGlossy);
+    images[skip].insert(images[skip].end(), glossy.begin(), glossy.end());
+  }
+  std::vector<float> depth(size_t{kWidth} * kHeight);
+  const auto bytes = gbuffer_->depth.readback(ctx());
+  std::memcpy(depth.data(), bytes.data(), bytes.size());
+  size_t sky = 0;
+  for (float d : depth) sky += d >= 1.0f;
+  std::printf("sky pixels: %zu of %zu\n", sky, depth.size());
+  EXPECT_GT(sky, depth.size() / 4);
+  ASSERT_EQ(images[0].size(), images[1].size());
+  for (size_t i = 0; i < images[0].size(); ++i) EXPECT_EQ(images[0][i], images[1][i]) << i;
 }
 
 }  // namespace

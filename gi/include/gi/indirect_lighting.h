@@ -85,6 +85,10 @@ struct SceneGeometry {
   VkSampler sampler = VK_NULL_HANDLE;
   glm::vec3 boundsMin{0.0f};  // world-space box around all geometry (RSM depth range, ISM far
   glm::vec3 boundsMax{0.0f};  // distance, directional lights' orthographic view)
+  // The largest reflectance of any surface: the largest channel of any material's diffuse
+  // albedo or specular F0, textures included, in [0, 1]. 0 means nothing can bounce light, and
+  // the effect planner then skips every pass (FramePlan). A host that does not know leaves 1.
+  float maxReflectance = 1.0f;
 };
 
 // The light that bounces: a spot or a directional light in KHR_lights_punctual units.
@@ -128,6 +132,16 @@ struct FrameOutput {
   VkImageLayout gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
 };
 
+// What the effect planner ran in the last recorded frame, and why it left work out
+// (docs/integration.md, "The effect planner"). Settings::planner turns each decision off.
+struct FramePlan {
+  bool bounce = true;                // RSM, PDF, VSGL generation, ISM and shading ran
+  bool visibility = true;            // the ISMs were built and tested
+  bool glossy = true;                // the glossy term was shaded
+  bool skySkipped = true;            // subgroups that see only sky skipped the VSGL loop
+  std::vector<std::string> reasons;  // one line per decision that left work out
+};
+
 struct PassTime {
   std::string name;
   double ms = 0.0;
@@ -161,6 +175,8 @@ class IndirectLighting {
   // once that frame's submission has completed and before the next record(); empty if its
   // timestamps are not available yet. Never waits.
   std::vector<PassTime> lastFrameTimes() const;
+  // The plan of the last recorded frame (valid right after record()).
+  const FramePlan& lastPlan() const;
 
  private:
   struct Impl;

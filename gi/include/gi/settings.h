@@ -90,6 +90,17 @@ struct IsmSettings {
   uint32_t pcf = IsmBilinear;
 };
 
+// The effect planner's decisions (docs/integration.md, "The effect planner"), each of which can
+// be turned off for comparison. A decision only leaves out work whose result is exactly zero or
+// never read, so the images are the same with it on or off.
+struct PlannerSettings {
+  // No light can bounce (light intensity x colour = 0, or SceneGeometry::maxReflectance = 0):
+  // skip every pass and write black outputs.
+  bool skipWithoutBounce = true;
+  // Subgroups of pixels that all see the sky (depth 1) skip the VSGL loop.
+  bool skipSky = true;
+};
+
 struct Settings {
   // Creation. RSM side in texels, a power of two in [16, 2048] ([S3]: 512). Cost ~ rsmSize^2 in
   // the RSM, attribute and mip passes (about 0.3 us per texel on lavapipe).
@@ -120,6 +131,7 @@ struct Settings {
   // Shade the glossy (GGX) term; off, the glossy output is 0 and shading costs about 40 % less
   // (measured on lavapipe: 252 -> 155 ns per pixel-VSGL pair with ISMs).
   bool glossy = true;
+  PlannerSettings planner;
   // Debug: index of the VSGL whose ISM visibility is written to FrameOutput::debugVisibility,
   // or -1 for none. Cost: one extra pass over the pixels.
   int32_t debugVsgl = -1;

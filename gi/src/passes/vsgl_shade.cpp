@@ -13,7 +13,9 @@ IndirectImages createIndirectImages(engine::Context& ctx, uint32_t width, uint32
   desc.width = width;
   desc.height = height;
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  // Transfer destination: the planner clears them when no light can bounce.
+  desc.usage =
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   IndirectImages images{engine::Image(ctx, desc), engine::Image(ctx, desc)};
   engine::initialLayout(ctx, images.diffuse, VK_IMAGE_LAYOUT_GENERAL);
   engine::initialLayout(ctx, images.glossy, VK_IMAGE_LAYOUT_GENERAL);
