@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include "engine/tonemap.h"
 
@@ -20,29 +21,25 @@ const engine::Light* bouncingLight(const engine::Scene& scene) {
 }
 
 float maxReflectance(const engine::Scene& scene) {
-  // The largest byte of a texture channel, over every texel.
-  auto textureMax = [&](int index, int channel) {
-    if (index < 0) return 1.0f;
-    uint8_t m = 0;
+  // The smallest and largest value of a texture channel over every texel ({1, 1}: no texture).
+  auto textureRange = [&](int index, int channel) {
+    if (index < 0) return std::pair{1.0f, 1.0f};
+    uint8_t lo = 255, hi = 0;
     const std::vector<uint8_t>& t = scene.textures.at(size_t(index)).rgba8;
-    for (size_t i = size_t(channel); i < t.size(); i += 4) m = std::max(m, t[i]);
-    return float(m) / 255.0f;
-  };
-  auto textureMin = [&](int index, int channel) {
-    if (index < 0) return 1.0f;
-    uint8_t m = 255;
-    const std::vector<uint8_t>& t = scene.textures.at(size_t(index)).rgba8;
-    for (size_t i = size_t(channel); i < t.size(); i += 4) m = std::min(m, t[i]);
-    return float(m) / 255.0f;
+    for (size_t i = size_t(channel); i < t.size(); i += 4) {
+      lo = std::min(lo, t[i]);
+      hi = std::max(hi, t[i]);
+    }
+    return std::pair{float(lo) / 255.0f, float(hi) / 255.0f};
   };
   float bound = 0.0f;
   for (const engine::Material& m : scene.materials) {
     // albedo = base (1 - metallic) <= base; F0 = mix(0.04, base, metallic) <= max(0.04, base).
     float base = 0.0f;
     for (int c = 0; c < 3; ++c)
-      base = std::max(
-          base, m.baseColorFactor[c] * engine::srgbToLinear(textureMax(m.baseColorTexture, c)));
-    const float metallicMin = m.metallicFactor * textureMin(m.metallicRoughnessTexture, 2);
+      base = std::max(base, m.baseColorFactor[c] *
+                                engine::srgbToLinear(textureRange(m.baseColorTexture, c).second));
+    const float metallicMin = m.metallicFactor * textureRange(m.metallicRoughnessTexture, 2).first;
     bound = std::max({bound, base, metallicMin < 1.0f ? 0.04f : 0.0f});
   }
   return std::min(bound, 1.0f);
