@@ -46,6 +46,7 @@ const char* usage() {
          "  --ism on|off         imperfect-shadow-map visibility (default on)\n"
          "  --ism-size N         ISM side per VSGL, a power of two in 16..256 (default 64)\n"
          "  --no-glossy          skip the glossy (GGX) indirect term\n"
+         "  --planner on|off     the effect planner's decisions (default on; docs/integration.md)\n"
          "  --debug-vsgl N       VSGL whose visibility is drawn (default: the most powerful)\n";
 }
 
@@ -121,6 +122,11 @@ Options parseOptions(int argc, char** argv) {
       o.gi.ism.mapSize = parseUint(arg, args.value(), 16, 256);
     else if (arg == "--no-glossy")
       o.gi.glossy = false;
+    else if (arg == "--planner") {
+      // Every decision of the effect planner at once, for comparison (docs/integration.md).
+      const bool on = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
+      o.gi.planner.skipWithoutBounce = o.gi.planner.skipSky = on;
+    }
     else if (arg == "--debug-vsgl")
       o.debugVsgl = static_cast<int32_t>(parseUint(arg, args.value(), 0, 65535));
     else if (arg == "--help" || arg == "-h")
