@@ -10,6 +10,7 @@
 //     (luminance; VSGL i is lattice point i, or k-means cluster i).
 // It writes numbered EXR/PNG frames per method, a preview strip, an animated GIF, flicker.csv
 // and flicker_summary.{json,csv}.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -200,7 +201,7 @@ struct Capture {
   std::vector<glm::dvec3> previous;
   std::vector<double> previousPower;
   double flickerSum = 0.0, powerChangeSum = 0.0, relativeMseSum = 0.0;
-  std::vector<engine::ImageRgba32f> frames;  // linear, for the preview
+  std::vector<std::vector<uint8_t>> preview;  // tone-mapped, at the previewFrames
 };
 
 int run(const Options& o) {
@@ -229,7 +230,8 @@ int run(const Options& o) {
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
   std::unique_ptr<engine::SceneGpu> gpuScene;
   std::vector<Capture> captures;  // after the context: the modules go before the device does
-  std::vector<engine::ImageRgba32f> referenceFrames;
+  const std::vector<uint32_t> kept = flicker::previewFrames(o.frames);
+  flicker::Preview preview{int(o.width), int(o.height), {{"reference", {}}}};
   std::vector<glm::dvec3> previousReference;
   engine::GBufferData previousGBuffer;
   engine::View previousView;
@@ -266,7 +268,8 @@ int run(const Options& o) {
     char stem[32];
     std::snprintf(stem, sizeof(stem), "frame_%04u", t);
     samples::writePair((out / "reference" / stem).string(), referenceImage, toneMap);
-    referenceFrames.push_back(referenceImage);
+    const bool previewed = std::binary_search(kept.begin(), kept.end(), t);
+    if (previewed) preview.rows[0].frames.push_back(engine::toneMap(referenceImage, toneMap));
 
     // The previous frame seen from this one (identity unless the camera moved).
     const engine::GBufferData decoded = engine::readbackGBuffer(ctx, gbuffer);
@@ -307,8 +310,9 @@ int run(const Options& o) {
         csv << ",";
       }
       csv << "," << relativeMse << "\n";
-      c.frames.push_back(toImage(image, o.width, o.height));
-      samples::writePair((out / c.name / stem).string(), c.frames.back(), toneMap);
+      const engine::ImageRgba32f linear = toImage(image, o.width, o.height);
+      samples::writePair((out / c.name / stem).string(), linear, toneMap);
+      if (previewed) c.preview.push_back(engine::toneMap(linear, toneMap));
       c.previous = image;
       c.previousPower = power;
     }
@@ -344,10 +348,9 @@ int run(const Options& o) {
     table << m["name"].get<std::string>() << "," << m["image_flicker"] << ","
           << m["vsgl_power_change"] << "," << m["relative_mse"] << "\n";
 
-  std::vector<flicker::PreviewRow> rows = {{"reference", referenceFrames}};
-  for (const Capture& c : captures) rows.push_back({c.name, c.frames});
-  flicker::writeStrip((out / "preview.png").string(), rows, toneMap);
-  flicker::writeGif((out / "preview.gif").string(), rows, toneMap);
+  for (Capture& c : captures) preview.rows.push_back({c.name, std::move(c.preview)});
+  flicker::writeStrip((out / "preview.png").string(), preview);
+  flicker::writeGif((out / "preview.gif").string(), preview);
   std::printf(
       "wrote %s: frames per method, flicker.csv, flicker_summary.{json,csv}, "
       "preview.png, preview.gif\n",
