@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -117,6 +118,38 @@ TEST_F(ImageIoTest, PngRoundTripIsExact) {
   EXPECT_EQ(texture.width, width);
   EXPECT_EQ(texture.height, height);
   EXPECT_EQ(texture.rgba8, rgba);
+}
+
+// An animated GIF of two frames with a handful of colours (GIF's palette holds them exactly):
+// the first frame reads back as written, written whole (no temp file left); frames of the wrong
+// size, or none, give one-line errors and leave the previous file as it was.
+TEST_F(ImageIoTest, AnimatedGifWritesItsFramesWhole) {
+  const int width = 4, height = 2;
+  std::vector<uint8_t> first(size_t(width) * height * 4), second(first.size());
+  for (size_t i = 0; i < first.size(); i += 4) {
+    const uint8_t v = static_cast<uint8_t>(60 * (i / 4 % 4));
+    const uint8_t a[4] = {v, uint8_t(255 - v), 0, 255}, b[4] = {0, v, uint8_t(255 - v), 255};
+    std::copy(a, a + 4, first.begin() + std::ptrdiff_t(i));
+    std::copy(b, b + 4, second.begin() + std::ptrdiff_t(i));
+  }
+  const std::string file = path("anim.gif");
+  const std::vector<std::vector<uint8_t>> frames = {first, second};
+  engine::writeAnimatedGif(file, width, height, frames, 8);
+  EXPECT_TRUE(tempLeftovers().empty());
+  const engine::ImageRgba32f image = engine::readImage(file);
+  ASSERT_EQ(image.width, width);
+  ASSERT_EQ(image.height, height);
+  for (size_t i = 0; i < first.size(); ++i)
+    EXPECT_EQ(std::lround(image.pixels[i] * 255.0f), first[i]) << "byte " << i;
+
+  const std::vector<uint8_t> before = readBytes(file);
+  const std::vector<std::vector<uint8_t>> wrong = {first, std::vector<uint8_t>(4, 0)};
+  expectOneLineErrorNaming(
+      errorOf([&] { engine::writeAnimatedGif(file, width, height, wrong, 8); }), file);
+  expectOneLineErrorNaming(errorOf([&] { engine::writeAnimatedGif(file, width, height, {}, 8); }),
+                           file);
+  EXPECT_EQ(readBytes(file), before);
+  EXPECT_TRUE(tempLeftovers().empty());
 }
 
 TEST_F(ImageIoTest, DecodeTextureFromPngBytesInMemory) {
