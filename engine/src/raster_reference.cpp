@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include "engine/rasterizer.h"
 #include "shared/raster.h"
 
 namespace engine {
@@ -11,16 +12,18 @@ namespace {
 
 constexpr int kScale = static_cast<int>(RASTER_SUBPIXEL_SCALE);
 
-struct Context {
-  glm::mat4 viewProj;
+struct Rasterization {
   uint32_t width;
   uint32_t height;
   uint32_t triangleId;
   ReferenceRaster* out;
 };
 
-// Mirrors toClip(): ((c0 * x + c1 * y) + c2 * z) + c3, each product and sum rounded to float.
-glm::vec4 toClip(const glm::mat4& m, const glm::vec3& p) {
+// Mirrors toClip(): p - origin, then ((c0 * x + c1 * y) + c2 * z) + c3, each difference,
+// product and sum rounded to float.
+glm::vec4 toClip(const RasterTransform& t, const glm::vec3& world) {
+  const glm::mat4& m = t.matrix;
+  const glm::vec3 p(world.x - t.origin.x, world.y - t.origin.y, world.z - t.origin.z);
   glm::vec4 r;
   for (int k = 0; k < 4; ++k) {
     float a = m[0][k] * p.x;
@@ -56,7 +59,7 @@ glm::vec4 intersectEdge(const glm::vec4& inside, float dIn, const glm::vec4& out
   return r;
 }
 
-glm::ivec2 toFixed(const Context& c, const glm::vec4& v) {
+glm::ivec2 toFixed(const Rasterization& c, const glm::vec4& v) {
   glm::ivec2 r;
   for (int k = 0; k < 2; ++k) {
     float ndc = v[k] / v.w;
@@ -77,7 +80,7 @@ int64_t fillBias(glm::ivec2 a, glm::ivec2 b) {
   return topLeft ? 0 : -1;
 }
 
-void emit(Context& c, glm::vec4 c0, glm::vec4 c1, glm::vec4 c2) {
+void emit(Rasterization& c, glm::vec4 c0, glm::vec4 c1, glm::vec4 c2) {
   glm::ivec2 p0 = toFixed(c, c0), p1 = toFixed(c, c1), p2 = toFixed(c, c2);
   float z0 = c0.z / c0.w, z1 = c1.z / c1.w, z2 = c2.z / c2.w;
   int64_t area = edge(p0, p1, p2);
@@ -119,12 +122,13 @@ ReferenceRaster rasterizeReference(const Scene& scene, const glm::mat4& viewProj
   ReferenceRaster out;
   out.visibility.assign(size_t{width} * height, ~uint64_t{0});
   out.coverage.assign(size_t{width} * height, 0);
-  Context c{viewProj, width, height, 0, &out};
+  Rasterization c{width, height, 0, &out};
+  const RasterTransform transform = rasterTransform(viewProj);
   for (uint32_t tri = 0; tri < scene.triangleCount(); ++tri) {
     c.triangleId = tri;
     glm::vec4 v[3];
     for (int i = 0; i < 3; ++i)
-      v[i] = toClip(viewProj, scene.positions[scene.indices[3 * tri + i]]);
+      v[i] = toClip(transform, scene.positions[scene.indices[3 * tri + i]]);
     bool rejected = false;
     for (int axis = 0; axis < 2; ++axis) {
       rejected = rejected || (v[0][axis] > v[0].w && v[1][axis] > v[1].w && v[2][axis] > v[2].w);

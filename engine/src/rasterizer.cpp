@@ -32,6 +32,23 @@ void Rasterizer::reserve(uint32_t triangleCount) {
   capacity_ = needed;
 }
 
+RasterTransform rasterTransform(const glm::mat4& viewProj) {
+  const glm::dmat4 m(viewProj);
+  // Row k of the transform as a function of the point: clip_k = sum_c m[c][k] p_c + m[3][k].
+  auto row = [&](int k) { return glm::dvec4(m[0][k], m[1][k], m[2][k], m[3][k]); };
+  const bool perspective = glm::dvec3(row(3)) != glm::dvec3(0.0);
+  // The eye: x = y = 0 and w = 0 (perspective), or z = 0 (orthographic: the near plane).
+  const glm::dvec4 third = perspective ? row(3) : row(2);
+  const glm::dmat3 a =
+      glm::transpose(glm::dmat3(glm::dvec3(row(0)), glm::dvec3(row(1)), glm::dvec3(third)));
+  const glm::dvec3 b(-row(0).w, -row(1).w, -third.w);
+  const glm::dvec3 origin =
+      std::abs(glm::determinant(a)) > 0.0 ? glm::inverse(a) * b : glm::dvec3(0.0);
+  glm::dmat4 relative = m;
+  relative[3] = m * glm::dvec4(origin, 1.0);
+  return {glm::mat4(relative), glm::vec3(origin)};
+}
+
 void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::mat4& viewProj,
                         const RasterTarget& target, GpuProfiler* profiler) {
   if (target.width == 0 || target.height == 0 || target.width > RASTER_MAX_VIEWPORT ||
@@ -47,8 +64,12 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::m
     gpu::RasterCounters zero{0, 0, 1, 1, 0, 0, 0, 0};
     updateBuffer(cmd, counters_, &zero, sizeof(zero));
     fillBuffer(cmd, *target.visibility, 0xFFFFFFFFu, target.offset, visBytes);
-    gpu::RasterSetupPush push{
-        viewProj, {target.width, target.height}, scene.triangleCount, capacity_};
+    const RasterTransform transform = rasterTransform(viewProj);
+    gpu::RasterSetupPush push{transform.matrix,
+                              glm::vec4(transform.origin, 0.0f),
+                              {target.width, target.height},
+                              scene.triangleCount,
+                              capacity_};
     setup_.dispatch(cmd,
                     {Binding::storage(scene.vertices), Binding::storage(scene.indices),
                      Binding::storage(triangles_), Binding::storage(counters_)},

@@ -18,7 +18,10 @@ layout(std430, binding = 2) writeonly buffer Triangles { RasterTriangle triangle
 layout(std430, binding = 3) buffer Counters { RasterCounters counters; };
 layout(push_constant) uniform Push { RasterSetupPush pc; };
 
-vec4 toClip(vec3 p) {
+// Relative to the eye first: p - origin is exact when the two are close (Sterbenz), so a scene
+// far from the world origin keeps its depth order (docs/techniques/stability.md, case 6).
+vec4 toClip(vec3 world) {
+  precise vec3 p = world - pc.origin.xyz;
   precise vec4 c = pc.viewProj[0] * p.x + pc.viewProj[1] * p.y + pc.viewProj[2] * p.z;
   precise vec4 r = c + pc.viewProj[3];
   return r;

@@ -48,7 +48,8 @@ struct RasterCounters {
 };
 
 struct RasterSetupPush {
-  mat4 viewProj;       // world -> Vulkan clip space (depth range [0, 1])
+  mat4 viewProj;       // (world - origin) -> Vulkan clip space (depth range [0, 1])
+  vec4 origin;         // xyz: the view's eye (engine::rasterTransform), w unused
   uvec2 viewport;      // pixels
   uint triangleCount;  // source triangles
   uint capacity;       // RasterTriangle entries available
@@ -66,6 +67,6 @@ SHARED_ASSERT_SIZE(RasterTriangle, 48);
 SHARED_ASSERT_OFFSET(RasterTriangle, bboxMin, 24);
 SHARED_ASSERT_OFFSET(RasterTriangle, z0, 32);
 SHARED_ASSERT_SIZE(RasterCounters, 32);
-SHARED_ASSERT_SIZE(RasterSetupPush, 80);
+SHARED_ASSERT_SIZE(RasterSetupPush, 96);
 SHARED_ASSERT_SIZE(RasterTrianglesPush, 16);
 #endif

@@ -220,12 +220,12 @@ TEST_F(StabilityGeneration, HugeDynamicRangeInFp32) {
 // - powers within 1e-3 relative;
 // - means relative to the light within delta = 5e-4 m. The RSM differs by the rasterizer's fp32
 //   transform of vertices 141 m from the origin: each rounding there is 141 m x 2^-24 =
-//   8.4e-6 m, and the world-to-clip transform and depth reconstruction take a few tens of them;
-//   measured 1.45e-4 m;
+//   8.4e-6 m, and the transforms and depth reconstruction take a few tens of them; measured
+//   5.1e-5 m (1.45e-4 m before the rasterizer transformed relative to the eye);
 // - variances within 2 sqrt(v) delta + delta^2 (what moving the points by delta can do to a
 //   spread of sqrt(v)) plus 1e-4 relative.
-// Further out, that rasterization limit grows faster than the offset: at 1 km the means moved
-// 1.75 cm (docs/techniques/stability.md).
+// Further out the error keeps growing with the offset, and at 1 km one edge texel of the RSM sees
+// another surface (docs/techniques/stability.md).
 TEST_F(StabilityGeneration, TranslationInvariance) {
   const glm::vec3 offset(100.0f, 0.0f, 100.0f);
   const double delta = 5e-4;
