@@ -119,11 +119,15 @@ void emit(Rasterization& c, glm::vec4 c0, glm::vec4 c1, glm::vec4 c2) {
 
 ReferenceRaster rasterizeReference(const Scene& scene, const glm::mat4& viewProj, uint32_t width,
                                    uint32_t height) {
+  return rasterizeReference(scene, rasterTransform(viewProj), width, height);
+}
+
+ReferenceRaster rasterizeReference(const Scene& scene, const RasterTransform& transform,
+                                   uint32_t width, uint32_t height) {
   ReferenceRaster out;
   out.visibility.assign(size_t{width} * height, ~uint64_t{0});
   out.coverage.assign(size_t{width} * height, 0);
   Rasterization c{width, height, 0, &out};
-  const RasterTransform transform = rasterTransform(viewProj);
   for (uint32_t tri = 0; tri < scene.triangleCount(); ++tri) {
     c.triangleId = tri;
     glm::vec4 v[3];

@@ -51,6 +51,12 @@ RasterTransform rasterTransform(const glm::mat4& viewProj) {
 
 void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::mat4& viewProj,
                         const RasterTarget& target, GpuProfiler* profiler) {
+  record(cmd, scene, rasterTransform(viewProj), target, profiler);
+}
+
+void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
+                        const RasterTransform& transform, const RasterTarget& target,
+                        GpuProfiler* profiler) {
   if (target.width == 0 || target.height == 0 || target.width > RASTER_MAX_VIEWPORT ||
       target.height > RASTER_MAX_VIEWPORT)
     throw Error("rasterizer: viewport " + std::to_string(target.width) + "x" +
@@ -64,7 +70,6 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::m
     gpu::RasterCounters zero{0, 0, 1, 1, 0, 0, 0, 0};
     updateBuffer(cmd, counters_, &zero, sizeof(zero));
     fillBuffer(cmd, *target.visibility, 0xFFFFFFFFu, target.offset, visBytes);
-    const RasterTransform transform = rasterTransform(viewProj);
     gpu::RasterSetupPush push{transform.matrix,
                               glm::vec4(transform.origin, 0.0f),
                               {target.width, target.height},

@@ -19,7 +19,7 @@ std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, ui
   const engine::Light& l = scene.lights.at(light);
   const gi::RsmView view = gi::makeRsmView(scene, l, rsmSize);
   const engine::ReferenceRaster raster =
-      engine::rasterizeReference(scene, view.view.viewProj, rsmSize, rsmSize);
+      engine::rasterizeReference(scene, view.raster, rsmSize, rsmSize);
   const engine::GBufferData surface =
       engine::resolveGBufferReference(scene, view.view, raster.visibility);
   const std::vector<gi::RsmTexelReference> texels =

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "engine/rasterizer.h"
 #include "engine/scene.h"
 
 namespace engine {
@@ -20,5 +21,8 @@ struct ReferenceRaster {
 
 ReferenceRaster rasterizeReference(const Scene& scene, const glm::mat4& viewProj, uint32_t width,
                                    uint32_t height);
+// The same with the transform given directly (Rasterizer::record's second form).
+ReferenceRaster rasterizeReference(const Scene& scene, const RasterTransform& transform,
+                                   uint32_t width, uint32_t height);
 
 }  // namespace engine

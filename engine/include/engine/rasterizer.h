@@ -41,6 +41,12 @@ class Rasterizer {
   // space (x right, y down, depth [0, 1]).
   void record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::mat4& viewProj,
               const RasterTarget& target, GpuProfiler* profiler = nullptr);
+  // The same with the transform given directly, for a view that knows its eye and its
+  // translation-free view-projection exactly (the RSM): rasterTransform's solve for the eye from
+  // a rounded viewProj leaves the depth row's rounding times the distance from the world
+  // origin in every depth.
+  void record(VkCommandBuffer cmd, const SceneGpu& scene, const RasterTransform& transform,
+              const RasterTarget& target, GpuProfiler* profiler = nullptr);
 
   // The counters of the last recorded view (tests check `dropped` stays 0).
   const Buffer& counters() const { return counters_; }

@@ -39,6 +39,7 @@ RsmView makeRsmView(const engine::Bounds& bounds, const engine::Light& light, ui
     glm::mat4 rotation = engine::lookAlong(glm::vec3(0.0f), r.axis, engine::upVectorFor(r.axis));
     glm::mat4 view = engine::lookAlong(light.position, r.axis, engine::upVectorFor(r.axis));
     r.view = engine::makeView(view, proj, size, size);
+    r.raster = {proj * rotation, light.position};
     r.invViewProjRelative = glm::inverse(proj * rotation);
   } else if (light.type == engine::LightType::Directional) {
     engine::EnclosingOrtho o = engine::enclosingOrthographic(bounds, r.axis);
@@ -49,6 +50,7 @@ RsmView makeRsmView(const engine::Bounds& bounds, const engine::Light& light, ui
     glm::mat4 rotation = o.view;
     rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     r.view = engine::makeView(o.view, o.proj, size, size);
+    r.raster = {o.proj * rotation, o.eye};
     r.invViewProjRelative = glm::inverse(o.proj * rotation);
   } else {
     throw Error("light '" + light.name + "': point lights are not supported by the RSM yet");
@@ -72,6 +74,7 @@ RsmView cameraImportanceView(const engine::View& view) {
   r.invViewProjRelative = glm::inverse(view.proj * rotation);
   const glm::mat4 cameraToWorld = glm::inverse(view.view);
   r.origin = glm::vec3(cameraToWorld[3]);
+  r.raster = {view.proj * rotation, r.origin};
   r.axis = -glm::normalize(glm::vec3(cameraToWorld[2]));
   r.perspective = view.proj[3][3] == 0.0f;  // a perspective projection has no constant w term
   // Pixel side on the plane at unit distance (or in metres) from the projection's own scale,
@@ -145,7 +148,7 @@ void ReflectiveShadowMap::record(VkCommandBuffer cmd, const engine::SceneGpu& sc
                                  engine::GpuProfiler* profiler) {
   {
     engine::ProfileScope scope(profiler, cmd, "rsm raster");
-    rasterizer.record(cmd, scene, view.view.viewProj, {&visibility_, 0, size_, size_});
+    rasterizer.record(cmd, scene, view.raster, {&visibility_, 0, size_, size_});
     resolve.record(cmd, scene, visibility_, view.view, surface_);
   }
   flux_.record(cmd, surface_, view, lightFluxSource(light), vpls_, profiler);

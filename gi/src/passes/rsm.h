@@ -16,7 +16,10 @@ namespace gi {
 // outer cone (corner texels outside the cone get zero power); directional lights: an
 // orthographic view enclosing the scene. Point lights need six views and are not supported yet.
 struct RsmView {
-  engine::View view;                    // world -> clip for the rasterizer; width = height = size
+  engine::View view;  // world -> clip; width = height = size
+  // The rasterizer's transform: (world - origin) -> clip, from the projection and the light's
+  // rotation directly, so that depths do not carry the rounding of a world-space translation.
+  engine::RasterTransform raster;
   glm::mat4 invViewProjRelative{1.0f};  // NDC -> offset from `origin` (no translation inside)
   glm::vec3 origin{0.0f};               // light position (spot) or orthographic eye (directional)
   glm::vec3 axis{0.0f, 0.0f, -1.0f};    // unit direction the light travels
