@@ -61,6 +61,13 @@ View makeView(const glm::mat4& view, const glm::mat4& proj, uint32_t width, uint
   return v;
 }
 
+RelativeUnprojection relativeUnprojection(const View& view) {
+  glm::dmat4 rotation(view.view);
+  rotation[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);
+  const glm::dmat4 inverseView = glm::inverse(glm::dmat4(view.view));
+  return {glm::mat4(glm::inverse(glm::dmat4(view.proj) * rotation)), glm::vec3(inverseView[3])};
+}
+
 glm::vec3 upVectorFor(const glm::vec3& forward) {
   return std::abs(forward.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
 }

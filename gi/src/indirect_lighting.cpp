@@ -238,7 +238,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
     const uint32_t flags = (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) |
                            (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
                            (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u);
-    shade.record(cmd, gbuffer, camera.invViewProj,
+    shade.record(cmd, gbuffer, camera,
                  {vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()}, indirect,
                  &profiler);
     if (settings.debugVsgl >= 0) {

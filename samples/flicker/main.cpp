@@ -44,7 +44,7 @@ struct Options {
   uint32_t width = 160, height = 90;
   uint32_t count = 128;
   uint32_t block = 8;
-  uint32_t warmup = 32;
+  uint32_t warmup = 64;
   std::vector<std::string> methods = {"tok15", "modified", "modified-k4", "kmeans-2d", "kmeans-3d"};
   std::string pdf = "brsm";
   std::string reference = "vpl";
@@ -64,7 +64,7 @@ const char* usage() {
          "  --width N --height N  image size, 1..4096 (default 160x90)\n"
          "  --count N          VSGLs, 1..65535 (default 128)\n"
          "  --warmup N         frames of the first frame each method renders first, 0..1000\n"
-         "                     (default 32: k-means converges from its seeds)\n"
+         "                     (default 64: k-means converges from its seeds)\n"
          "  --block N          the image flicker compares N x N pixel block means, 1..64 (1 =\n"
          "                     per pixel; default 8)\n"
          "  --methods LIST     comma-separated: tok15, modified, kmeans-2d, kmeans-3d; a filtered\n"

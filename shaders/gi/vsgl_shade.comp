@@ -91,9 +91,10 @@ void main() {
   bool shaded = inside && depth < 1.0;  // depth 1 = sky: never shaded
 
   vec2 ndc = pixelToNdc(vec2(coord) + 0.5, pc.viewport);
-  vec3 receiver = unproject(pc.invViewProj, ndc, depth);
+  // Relative to the eye, then moved: no cancellation of |eye| / znear sized terms.
+  vec3 receiver = pc.eye.xyz + unproject(pc.invViewProjRelative, ndc, depth);
   vec3 origin, direction;
-  cameraRay(pc.invViewProj, ndc, origin, direction);
+  cameraRay(pc.invViewProjRelative, ndc, origin, direction);
   vec3 view = -direction;
   vec3 normal = octDecode(imageLoad(gNormal, coord).rg);
   // A host's G-buffer can carry NaN or Inf in a material channel (a broken texture; vsgl-math.md

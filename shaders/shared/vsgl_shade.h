@@ -23,7 +23,8 @@
 SHARED_BEGIN
 
 struct VsglShadePush {
-  mat4 invViewProj;  // camera NDC -> world
+  mat4 invViewProjRelative;  // camera NDC -> offset from `eye` (engine::relativeUnprojection)
+  vec4 eye;                  // xyz: the camera's position, world
   uvec2 viewport;
   uint vsglCount;
   IsmParams ism;  // the atlas's layout and biases (read with VSGL_SHADE_VISIBILITY)
@@ -31,5 +32,5 @@ struct VsglShadePush {
 
 SHARED_END
 
-SHARED_ASSERT_SIZE(VsglShadePush, 108);
+SHARED_ASSERT_SIZE(VsglShadePush, 124);
 #endif

@@ -326,4 +326,60 @@ TEST_F(IndirectLightingApiTest, SkySkipLeavesTheImageUnchanged) {
   for (size_t i = 0; i < images[0].size(); ++i) EXPECT_EQ(images[0][i], images[1][i]) << i;
 }
 
+// vsgl-math.md section 12, case 6, for the whole module: the Cornell box, its light and its camera
+// moved 1 km along x and z shade nearly the same indirect light. The rasterizer, the RSM, the
+// VSGL records and the shading work relative to the light or the eye. The rest still rounds at
+// the moved coordinates' fp32 spacing (8.4e-5 m): the moved inputs themselves, the G-buffer
+// resolve's world-space rays and the ISM's world-space points. Measured: RMS change 1.2e-5 of
+// the mean for a 1 mm move, 8e-4 at 14 m, 2e-3 at 141 m, 8.4e-3 at 1.4 km.
+// Bound: 2 % of the mean, a twentieth of the module's own RMS error against the path tracer
+// on this scene (about 40 % of the mean, docs/techniques/ground-truth.md), so that moving a
+// scene stays far below the accuracy the method has.
+TEST_F(IndirectLightingApiTest, TranslatedSceneShadesTheSame) {
+  const glm::vec3 offset(1000.0f, 0.0f, 1000.0f);
+  auto shadeScene = [&](const engine::Scene& scene) {
+    const engine::SceneGpu gpu = engine::uploadScene(ctx(), scene);
+    view_ = engine::cameraView(scene.cameras.at(0), kWidth, kHeight);
+    *gbuffer_ = renderGBuffer(gpu, view_);
+    scene_ = scene;
+    gi::Settings settings = smallSettings();
+    gi::Status status;
+    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+    EXPECT_TRUE(lighting) << status.message;
+    EXPECT_TRUE(lighting->setScene(geometry(gpu, scene)));
+    gi::FrameOutput out;
+    ctx().submitAndWait(
+        [&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, input(), &out)); });
+    std::vector<glm::vec4> image = readOutput(out.indirectDiffuse);
+    const std::vector<glm::vec4> glossy = readOutput(out.indirectGlossy);
+    for (size_t i = 0; i < image.size(); ++i) image[i] += glossy[i];
+    return image;
+  };
+  const engine::Scene original = scene_;
+  engine::Scene moved = original;
+  for (glm::vec3& p : moved.positions) p += offset;
+  for (engine::Light& l : moved.lights) l.position += offset;
+  for (engine::Camera& c : moved.cameras) c.cameraToWorld[3] += glm::vec4(offset, 0.0f);
+  const std::vector<glm::vec4> near = shadeScene(original), far = shadeScene(moved);
+  double mean = 0.0, squared = 0.0, worst = 0.0;
+  size_t off = 0;
+  for (size_t i = 0; i < near.size(); ++i) {
+    const double a = glm::dot(glm::dvec3(glm::vec3(near[i])), glm::dvec3(1.0 / 3.0));
+    const double b = glm::dot(glm::dvec3(glm::vec3(far[i])), glm::dvec3(1.0 / 3.0));
+    mean += a;
+    squared += (a - b) * (a - b);
+    const double rel = std::abs(a - b) / std::max(a, 1e-6);
+    worst = std::max(worst, rel);
+    off += rel > 0.01;
+  }
+  mean /= double(near.size());
+  const double rms = std::sqrt(squared / double(near.size())) / mean;
+  std::printf(
+      "moved 1.4 km: RMS change %.2e of the mean, %zu of %zu pixels off by > 1 %%, worst %.2e\n",
+      rms, off, near.size(), worst);
+  EXPECT_LE(rms, 0.02);
+  for (const glm::vec4& v : far)
+    EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
+}
+
 }  // namespace

@@ -32,6 +32,16 @@ View cameraView(const Camera& camera, uint32_t width, uint32_t height);
 
 View makeView(const glm::mat4& view, const glm::mat4& proj, uint32_t width, uint32_t height);
 
+// Unprojection relative to the eye: invViewProjRelative maps NDC to the offset from `eye`
+// (the inverse of projection x rotation, in double, rounded once). Rebuilding a world position
+// as eye + offset keeps it accurate far from the world origin, where the full inverse
+// view-projection cancels terms of size |eye| / znear (docs/techniques/stability.md, case 6).
+struct RelativeUnprojection {
+  glm::mat4 invViewProjRelative{1.0f};
+  glm::vec3 eye{0.0f};
+};
+RelativeUnprojection relativeUnprojection(const View& view);
+
 // An up vector not parallel to `forward`, for views placed by code (lights).
 glm::vec3 upVectorFor(const glm::vec3& forward);
 

@@ -71,10 +71,11 @@ RsmView cameraImportanceView(const engine::View& view) {
   r.view = view;
   glm::mat4 rotation = view.view;
   rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  r.invViewProjRelative = glm::inverse(view.proj * rotation);
-  const glm::mat4 cameraToWorld = glm::inverse(view.view);
-  r.origin = glm::vec3(cameraToWorld[3]);
+  const engine::RelativeUnprojection unprojection = engine::relativeUnprojection(view);
+  r.invViewProjRelative = unprojection.invViewProjRelative;
+  r.origin = unprojection.eye;
   r.raster = {view.proj * rotation, r.origin};
+  const glm::mat4 cameraToWorld = glm::inverse(view.view);
   r.axis = -glm::normalize(glm::vec3(cameraToWorld[2]));
   r.perspective = view.proj[3][3] == 0.0f;  // a perspective projection has no constant w term
   // Pixel side on the plane at unit distance (or in metres) from the projection's own scale,

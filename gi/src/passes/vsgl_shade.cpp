@@ -33,7 +33,7 @@ VsglShade::VsglShade(engine::Context& ctx)
   albedoTable_.upload(ctx, std::span<const glm::vec2>(table));
 }
 
-void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const glm::mat4& invViewProj,
+void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,
                        const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler) {
   if (in.vsgls->size() < VkDeviceSize{in.vsglCount} * sizeof(gpu::Vsgl))
     throw engine::Error("VSGL shading: " + std::to_string(in.vsglCount) +
@@ -55,7 +55,9 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const glm:
   engine::ProfileScope scope(profiler, cmd, "vsgl shading");
   using engine::Binding;
   gpu::VsglShadePush push{};
-  push.invViewProj = invViewProj;
+  const engine::RelativeUnprojection unprojection = engine::relativeUnprojection(camera);
+  push.invViewProjRelative = unprojection.invViewProjRelative;
+  push.eye = glm::vec4(unprojection.eye, 1.0f);
   push.viewport = {gbuffer.width, gbuffer.height};
   push.vsglCount = in.vsglCount;
   push.ism = in.ism;

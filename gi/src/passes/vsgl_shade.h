@@ -8,6 +8,7 @@
 #include "engine/gbuffer.h"
 #include "engine/profiler.h"
 #include "engine/program.h"
+#include "engine/view.h"
 #include "shared/ism.h"
 #include "shared/vsgl_shade.h"
 
@@ -33,9 +34,10 @@ class VsglShade {
     gpu::IsmParams ism{};                     // Ism::params()
   };
 
-  // `invViewProj`: the G-buffer camera's NDC -> world matrix. The first record with a given
-  // `in.flags` compiles that variant of the pass (see VSGL_SHADE_VARIANTS).
-  void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const glm::mat4& invViewProj,
+  // `camera`: the G-buffer camera's view (positions are rebuilt relative to its eye,
+  // engine::relativeUnprojection). The first record with a given `in.flags` compiles that
+  // variant of the pass (see VSGL_SHADE_VARIANTS).
+  void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,
               const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler = nullptr);
 
  private:
