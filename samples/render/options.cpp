@@ -122,11 +122,10 @@ Options parseOptions(int argc, char** argv) {
       o.gi.ism.mapSize = parseUint(arg, args.value(), 16, 256);
     else if (arg == "--no-glossy")
       o.gi.glossy = false;
-    else if (arg == "--planner") {
-      // Every decision of the effect planner at once, for comparison (docs/integration.md).
-      const bool on = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
-      o.gi.planner.skipWithoutBounce = o.gi.planner.skipSky = on;
-    }
+    else if (arg == "--planner")  // every planner decision at once, for comparison
+      o.gi.planner = parseChoice<gi::PlannerSettings>(
+          arg, args.value(),
+          {{"on", gi::PlannerSettings{}}, {"off", gi::PlannerSettings{false, false}}});
     else if (arg == "--debug-vsgl")
       o.debugVsgl = static_cast<int32_t>(parseUint(arg, args.value(), 0, 65535));
     else if (arg == "--help" || arg == "-h")

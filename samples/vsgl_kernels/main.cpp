@@ -42,7 +42,7 @@ struct Options {
   gi::BrsmSettings brsmSettings;
   uint32_t width = 320;  // the BRSM's additional camera G-buffer
   uint32_t height = 180;
-  uint32_t frames = 5;  // timed frames per rule (after one warm-up frame each)
+  uint32_t frames = 5;            // timed frames per rule (after one warm-up frame each)
   samples::CommonOptions common;  // --device, --validation, --help
 };
 

@@ -8,22 +8,26 @@
 
 #define SG_PROBE_GROUP 8
 
-// Functions (SgProbeCase::function); inputs in a, b, c and outputs in x, y as listed.
-#define SG_PROBE_EM1X 0u              // a.x = x -> x.x = em1x(x)
-#define SG_PROBE_INTEGRAL 1u          // a.x = lambda -> x.x = S(lambda)
-#define SG_PROBE_PRODUCT 2u           // a = (axis, lambda), b = (axis, lambda) -> x = (axis, lambda),
-                                      // y.x = log amplitude
-#define SG_PROBE_CLAMPED_COSINE 3u    // a.x = lambda, a.y = cosine -> x = (D, U, L, vMF upper fraction)
-#define SG_PROBE_BANERJEE 4u          // a.x = mean length r, a.y = lambda -> x.x = kappa(r),
-                                      // x.y = r(lambda)
-#define SG_PROBE_MEAN_AXIS 5u         // a.xyz = mean axis -> x = (axis, sharpness)
-#define SG_PROBE_VSGL_RADIANCE 6u     // a = (mean, variance), b = (axis, sharpness),
-                                      // c = (receiver, log scale) -> x = (axis, sharpness),
-                                      // y.x = log amplitude
-#define SG_PROBE_GGX_REFLECTION 7u    // a = (light axis, lambda), b = (normal, alpha),
-                                      // c = (view, f0) -> x.xyz
-#define SG_PROBE_VPL_SPECULAR 8u      // a = (normal, roughness), b.xyz = to light -> x = (axis,
-                                      // sharpness)
+// Functions (SgProbeCase::function), inputs in a, b, c and outputs in x, y:
+//   EM1X             a.x = x -> x.x = em1x(x)
+//   INTEGRAL         a.x = lambda -> x.x = S(lambda)
+//   PRODUCT          a, b = (axis, lambda) -> x = (axis, lambda), y.x = log amplitude
+//   CLAMPED_COSINE   a.x = lambda, a.y = cosine -> x = (D, U, L, vMF upper fraction)
+//   BANERJEE         a.x = mean length r, a.y = lambda -> x.x = kappa(r), x.y = r(lambda)
+//   MEAN_AXIS        a.xyz = mean axis -> x = (axis, sharpness)
+//   VSGL_RADIANCE    a = (mean, variance), b = (axis, sharpness), c = (receiver, log scale)
+//                    -> x = (axis, sharpness), y.x = log amplitude
+//   GGX_REFLECTION   a = (light axis, lambda), b = (normal, alpha), c = (view, f0) -> x.xyz
+//   VPL_SPECULAR     a = (normal, roughness), b.xyz = to light -> x = (axis, sharpness)
+#define SG_PROBE_EM1X 0u
+#define SG_PROBE_INTEGRAL 1u
+#define SG_PROBE_PRODUCT 2u
+#define SG_PROBE_CLAMPED_COSINE 3u
+#define SG_PROBE_BANERJEE 4u
+#define SG_PROBE_MEAN_AXIS 5u
+#define SG_PROBE_VSGL_RADIANCE 6u
+#define SG_PROBE_GGX_REFLECTION 7u
+#define SG_PROBE_VPL_SPECULAR 8u
 
 SHARED_BEGIN
 

@@ -62,8 +62,7 @@ class VsglShadeTest : public testing_gpu::GpuTest {
       ism.recordPoints(cmd, *gpuScene_);
       ism.recordBuild(cmd, *gpuScene_, buffer, count);
       engine::computeBarrier(cmd);
-      pass.record(cmd, *gbuffer_, view_,
-                  {&buffer, count, flags, &ism.atlas(), ism.params()}, out);
+      pass.record(cmd, *gbuffer_, view_, {&buffer, count, flags, &ism.atlas(), ism.params()}, out);
     });
     if (atlas) {
       params_ = ism.params();
