@@ -214,12 +214,8 @@ std::vector<json> runRows(engine::Context& ctx, const bench::Preset& p, SceneRun
                         {"p5_ms", quantile(m.times[name], 0.05)},
                         {"p95_ms", quantile(m.times[name], 0.95)},
                         {"dispatches", m.dispatches[name]}});
-    const samples::Indirect indirect = samples::readIndirect(ctx, outputs[i], p.width, p.height);
-    std::vector<glm::dvec3> image(s.reference.size());
-    for (size_t j = 0; j < image.size(); ++j)
-      for (int c = 0; c < 3; ++c)
-        image[j][c] =
-            double(indirect.diffuse.pixels[4 * j + c]) + indirect.glossy.pixels[4 * j + c];
+    const std::vector<glm::dvec3> image =
+        samples::indirectSum(samples::readIndirect(ctx, outputs[i], p.width, p.height));
     rows.push_back({{"passes", passes},
                     {"error", errorRecord(image, s.reference, p)},
                     {"plan", lightings[i]->lastPlan().reasons},

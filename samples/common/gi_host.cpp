@@ -134,6 +134,14 @@ Indirect readIndirect(engine::Context& ctx, const gi::FrameOutput& output, uint3
           readOutput(ctx, output.indirectGlossy, width, height, VK_FORMAT_R32G32B32A32_SFLOAT)};
 }
 
+std::vector<glm::dvec3> indirectSum(const Indirect& indirect) {
+  std::vector<glm::dvec3> sum(indirect.diffuse.pixels.size() / 4);
+  for (size_t i = 0; i < sum.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      sum[i][c] = double(indirect.diffuse.pixels[4 * i + c]) + indirect.glossy.pixels[4 * i + c];
+  return sum;
+}
+
 std::vector<gpu::Vsgl> readVsgls(engine::Context& ctx, const gi::FrameOutput& output) {
   engine::Buffer buffer =
       engine::Buffer::borrow(output.vsgls, VkDeviceSize{output.vsglCount} * sizeof(gpu::Vsgl));

@@ -3,6 +3,7 @@
 // picture.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "engine/image_io.h"
@@ -19,6 +20,19 @@ engine::Scene loadScene(const std::string& name);
 engine::View sceneView(const engine::Scene& scene, uint32_t width, uint32_t height);
 // Creates `dir` (and parents); throws engine::Error naming it on failure.
 void createOutputDirectory(const std::string& dir);
+// A width x height linear image whose pixel i is value(i) (a glm::dvec3), alpha 1.
+template <class F>
+engine::ImageRgba32f imageFrom(uint32_t width, uint32_t height, F value) {
+  engine::ImageRgba32f image{int(width), int(height), {}};
+  image.pixels.reserve(size_t{width} * height * 4);
+  for (size_t i = 0; i < size_t{width} * height; ++i) {
+    const glm::dvec3 v = value(i);
+    for (int k = 0; k < 3; ++k) image.pixels.push_back(static_cast<float>(v[k]));
+    image.pixels.push_back(1.0f);
+  }
+  return image;
+}
+
 // <base>.exr (linear) and <base>.png (tone-mapped sRGB).
 void writePair(const std::string& base, const engine::ImageRgba32f& image,
                const engine::ToneMapSettings& toneMap);

@@ -149,22 +149,6 @@ gi::Settings methodSettings(const std::string& word, const Options& o) {
   return s;
 }
 
-std::vector<glm::dvec3> toDouble(const samples::Indirect& indirect) {
-  std::vector<glm::dvec3> image(indirect.diffuse.pixels.size() / 4);
-  for (size_t i = 0; i < image.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      image[i][c] = double(indirect.diffuse.pixels[4 * i + c]) + indirect.glossy.pixels[4 * i + c];
-  return image;
-}
-
-engine::ImageRgba32f toImage(const std::vector<glm::dvec3>& pixels, uint32_t width,
-                             uint32_t height) {
-  engine::ImageRgba32f image{int(width), int(height), std::vector<float>(pixels.size() * 4, 1.0f)};
-  for (size_t i = 0; i < pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c) image.pixels[4 * i + c] = float(pixels[i][c]);
-  return image;
-}
-
 // Per VSGL, the luminance of both lobes' power.
 std::vector<double> vsglPowers(const std::vector<gpu::Vsgl>& vsgls) {
   std::vector<double> power;
@@ -263,7 +247,8 @@ int run(const Options& o) {
           truth::cachedPathTrace(cache, f.scene, f.view, f.lightIndex, trace);
       for (size_t i = 0; i < reference.size(); ++i) reference[i] = p.diffuse[i] + p.glossy[i];
     }
-    const engine::ImageRgba32f referenceImage = toImage(reference, o.width, o.height);
+    const engine::ImageRgba32f referenceImage =
+        samples::imageFrom(o.width, o.height, [&](size_t i) { return reference[i]; });
     if (t == 0) toneMap.exposureEv = std::log2(engine::exposureScale(referenceImage, toneMap));
     char stem[32];
     std::snprintf(stem, sizeof(stem), "frame_%04u", t);
@@ -293,7 +278,7 @@ int run(const Options& o) {
         ctx.submitAndWait(
             [&](VkCommandBuffer cmd) { samples::check(c.lighting->record(cmd, input, &output)); });
       const std::vector<glm::dvec3> image =
-          toDouble(samples::readIndirect(ctx, output, o.width, o.height));
+          samples::indirectSum(samples::readIndirect(ctx, output, o.width, o.height));
       const std::vector<double> power = vsglPowers(samples::readVsgls(ctx, output));
       const double relativeMse = engine::compareImages(image, reference).relativeMse;
       c.relativeMseSum += relativeMse;
@@ -310,7 +295,8 @@ int run(const Options& o) {
         csv << ",";
       }
       csv << "," << relativeMse << "\n";
-      const engine::ImageRgba32f linear = toImage(image, o.width, o.height);
+      const engine::ImageRgba32f linear =
+          samples::imageFrom(o.width, o.height, [&](size_t i) { return image[i]; });
       samples::writePair((out / c.name / stem).string(), linear, toneMap);
       if (previewed) c.preview.push_back(engine::toneMap(linear, toneMap));
       c.previous = image;

@@ -94,17 +94,6 @@ uint32_t bouncingLight(const engine::Scene& scene) {
   throw engine::Error("--scene: '" + scene.source + "' has no spot or directional light to bounce");
 }
 
-engine::ImageRgba32f toImage(uint32_t width, uint32_t height, auto value) {
-  engine::ImageRgba32f image{int(width), int(height), {}};
-  image.pixels.reserve(size_t{width} * height * 4);
-  for (size_t i = 0; i < size_t{width} * height; ++i) {
-    const glm::dvec3 v = value(i);
-    for (int k = 0; k < 3; ++k) image.pixels.push_back(static_cast<float>(v[k]));
-    image.pixels.push_back(1.0f);
-  }
-  return image;
-}
-
 // RMSE, relative MSE and PSNR of `test` against the reference's indirect light, and a
 // false-colour picture of the error (scale: the 99th percentile of the absolute error).
 void printScore(const std::string& name, const std::vector<glm::dvec3>& test,
@@ -159,15 +148,20 @@ int run(const Options& o) {
   const uint32_t w = r.width, h = r.height;
   const engine::ToneMapSettings toneMap{};
   samples::writePair(
-      base, toImage(w, h, [&](size_t i) { return r.direct[i] + r.diffuse[i] + r.glossy[i]; }),
+      base,
+      samples::imageFrom(w, h, [&](size_t i) { return r.direct[i] + r.diffuse[i] + r.glossy[i]; }),
       toneMap);
-  engine::writeExr(base + "_direct.exr", toImage(w, h, [&](size_t i) { return r.direct[i]; }));
+  engine::writeExr(base + "_direct.exr",
+                   samples::imageFrom(w, h, [&](size_t i) { return r.direct[i]; }));
   engine::writeExr(base + "_indirect.exr",
-                   toImage(w, h, [&](size_t i) { return r.diffuse[i] + r.glossy[i]; }));
-  engine::writeExr(base + "_diffuse.exr", toImage(w, h, [&](size_t i) { return r.diffuse[i]; }));
-  engine::writeExr(base + "_glossy.exr", toImage(w, h, [&](size_t i) { return r.glossy[i]; }));
-  engine::writeExr(base + "_stderr.exr",
-                   toImage(w, h, [&](size_t i) { return glm::dvec3(r.standardError[i]); }));
+                   samples::imageFrom(w, h, [&](size_t i) { return r.diffuse[i] + r.glossy[i]; }));
+  engine::writeExr(base + "_diffuse.exr",
+                   samples::imageFrom(w, h, [&](size_t i) { return r.diffuse[i]; }));
+  engine::writeExr(base + "_glossy.exr",
+                   samples::imageFrom(w, h, [&](size_t i) { return r.glossy[i]; }));
+  engine::writeExr(base + "_stderr.exr", samples::imageFrom(w, h, [&](size_t i) {
+                     return glm::dvec3(r.standardError[i]);
+                   }));
   std::printf("wrote %s.{exr,png}, _direct, _indirect, _diffuse, _glossy, _stderr .exr\n",
               base.c_str());
 
@@ -179,7 +173,8 @@ int run(const Options& o) {
     const truth::VplGatherImage g = truth::vplGather(scene, rays, view, vpls, o.trace.threads);
     std::vector<glm::dvec3> gathered(indirect.size());
     for (size_t i = 0; i < gathered.size(); ++i) gathered[i] = g.diffuse[i] + g.glossy[i];
-    engine::writeExr(base + "_vpl.exr", toImage(w, h, [&](size_t i) { return gathered[i]; }));
+    engine::writeExr(base + "_vpl.exr",
+                     samples::imageFrom(w, h, [&](size_t i) { return gathered[i]; }));
     printScore("VPL gather (RSM " + std::to_string(o.vplRsm) + "^2, " + std::to_string(g.vplCount) +
                    " VPLs, " + std::to_string(g.seconds) + " s)",
                gathered, indirect, base + "_vpl_error.png", w, h);
