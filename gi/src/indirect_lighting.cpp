@@ -110,6 +110,10 @@ struct IndirectLighting::Impl {
   }
 
   void record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out);
+  // Every pass of a frame that bounces light, in order; returns the frame's VSGLs.
+  const engine::Buffer& recordPasses(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
+                                     const engine::View& camera, const RsmView& rsmView,
+                                     const engine::Light& light, uint32_t rule);
   // Both outputs cleared to black, visible to the host's next reads like the shaded ones.
   void recordBlackOutputs(VkCommandBuffer cmd);
   // The VSGLs of this frame: sampled with FIS or clustered with k-means.
@@ -206,68 +210,66 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   {
     engine::ProfileScope frame(&profiler, cmd, "frame");
     acquireHostImages(cmd, gbuffer);
-    if (!plan.bounce) {
+    if (plan.bounce) {
+      vsgls = &recordPasses(cmd, gbuffer, camera, rsmView, light, rule);
+      // The outputs, written by compute, become visible to whatever the host does next.
+      engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
+    } else {
       recordBlackOutputs(cmd);
-      out = {};
-      out.indirectDiffuse = {indirect.diffuse.handle(), indirect.diffuse.view(),
-                             indirect.diffuse.layout()};
-      out.indirectGlossy = {indirect.glossy.handle(), indirect.glossy.view(),
-                            indirect.glossy.layout()};
-      out.vsgls = generator.vsgls().handle();
-      out.vsglCount = 0;
-      out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
-      return;
     }
-    const bool brsm = settings.pdf == PdfKind::Brsm;
-    // [S3] generates the importance VSGLs with the rule under test and K = 1.
-    if (brsm)
-      importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
-                         &profiler);
-    rsm.record(cmd, *scene, rasterizer, resolve, rsmView, light, &profiler);
-    attributes.record(cmd, rsm.vpls(), rsm.surface(), rsmView, mips, &profiler);
-    if (brsm)
-      brsmPdf->record(cmd, attributes, rsmView, importance->vsgls(), settings.brsm, mips,
-                      &profiler);
-    vsgls = &recordVsgls(cmd, rsmView, rule);
-    // The maps are built for the shading's visibility or for the debug view, whichever asks.
-    if (settings.ismEnabled || settings.debugVsgl >= 0) {
-      if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
-      ismPointsStale = false;
-      ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
-    }
-    const uint32_t flags = (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) |
-                           (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
-                           (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u);
-    shade.record(cmd, gbuffer, camera,
-                 {vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()}, indirect,
-                 &profiler);
-    if (settings.debugVsgl >= 0) {
-      if (!debugVisibility) {
-        engine::ImageDesc desc;
-        desc.width = width;
-        desc.height = height;
-        desc.format = VK_FORMAT_R32_SFLOAT;
-        debugVisibility.emplace(ctx, desc);  // recordVisibility gives it its first layout
-      }
-      ism.recordVisibility(cmd, gbuffer, camera, *vsgls, static_cast<uint32_t>(settings.debugVsgl),
-                           *debugVisibility, &profiler);
-    }
-    // The outputs, written by compute, become visible to whatever the host does next.
-    engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
   }
 
   out = {};
   out.indirectDiffuse = {indirect.diffuse.handle(), indirect.diffuse.view(),
                          indirect.diffuse.layout()};
   out.indirectGlossy = {indirect.glossy.handle(), indirect.glossy.view(), indirect.glossy.layout()};
-  if (settings.debugVsgl >= 0)
+  if (vsgls && settings.debugVsgl >= 0)
     out.debugVisibility = {debugVisibility->handle(), debugVisibility->view(),
                            debugVisibility->layout()};
-  out.vsgls = vsgls->handle();
-  out.vsglCount = settings.vsglCount;
+  // No bounce: no VSGLs this frame (the buffer is still a valid handle).
+  out.vsgls = (vsgls ? *vsgls : generator.vsgls()).handle();
+  out.vsglCount = vsgls ? settings.vsglCount : 0;
   out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
+}
+
+const engine::Buffer& IndirectLighting::Impl::recordPasses(
+    VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,
+    const RsmView& rsmView, const engine::Light& light, uint32_t rule) {
+  const bool brsm = settings.pdf == PdfKind::Brsm;
+  // [S3] generates the importance VSGLs with the rule under test and K = 1.
+  if (brsm)
+    importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
+                       &profiler);
+  rsm.record(cmd, *scene, rasterizer, resolve, rsmView, light, &profiler);
+  attributes.record(cmd, rsm.vpls(), rsm.surface(), rsmView, mips, &profiler);
+  if (brsm)
+    brsmPdf->record(cmd, attributes, rsmView, importance->vsgls(), settings.brsm, mips, &profiler);
+  const engine::Buffer* vsgls = &recordVsgls(cmd, rsmView, rule);
+  // The maps are built for the shading's visibility or for the debug view, whichever asks.
+  if (settings.ismEnabled || settings.debugVsgl >= 0) {
+    if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
+    ismPointsStale = false;
+    ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
+  }
+  const uint32_t flags = (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) |
+                         (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
+                         (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u);
+  shade.record(cmd, gbuffer, camera, {vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()},
+               indirect, &profiler);
+  if (settings.debugVsgl >= 0) {
+    if (!debugVisibility) {
+      engine::ImageDesc desc;
+      desc.width = width;
+      desc.height = height;
+      desc.format = VK_FORMAT_R32_SFLOAT;
+      debugVisibility.emplace(ctx, desc);  // recordVisibility gives it its first layout
+    }
+    ism.recordVisibility(cmd, gbuffer, camera, *vsgls, static_cast<uint32_t>(settings.debugVsgl),
+                         *debugVisibility, &profiler);
+  }
+  return *vsgls;
 }
 
 void IndirectLighting::Impl::recordBlackOutputs(VkCommandBuffer cmd) {
