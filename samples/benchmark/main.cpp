@@ -12,6 +12,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <tuple>
+#include <utility>
 
 #include "cli_values.h"
 #include "engine/gbuffer.h"
@@ -130,13 +131,13 @@ struct SceneRun {
   std::vector<glm::dvec3> reference;  // path-traced indirect light
 };
 
+// `scene` (loaded and checked for a bouncing light before anything ran) on the device.
 SceneRun prepareScene(engine::Context& ctx, const bench::Preset& p, const std::string& name,
-                      const truth::ReferenceCache& cache) {
+                      engine::Scene scene, const truth::ReferenceCache& cache) {
   SceneRun r;
-  r.scene = samples::loadScene(name);
+  r.scene = std::move(scene);
   r.view = samples::sceneView(r.scene, p.width, p.height);
   r.light = samples::bouncingLight(r.scene);
-  if (!r.light) throw engine::Error(name + ": no spot or directional light to bounce");
   r.gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, r.scene));
   r.gbuffer = std::make_unique<engine::GBuffer>(engine::createGBuffer(ctx, p.width, p.height));
   engine::Rasterizer rasterizer(ctx);
@@ -277,9 +278,12 @@ int run(const Options& o) {
       ++total;
     }
   total *= p.scenes.size();
-  for (const std::string& name : p.scenes)
-    if (!samples::bouncingLight(samples::loadScene(name)))
+  std::vector<engine::Scene> scenes;  // loaded once, checked before anything is measured
+  for (const std::string& name : p.scenes) {
+    scenes.push_back(samples::loadScene(name));
+    if (!samples::bouncingLight(scenes.back()))
       throw engine::Error(name + ": no spot or directional light to bounce");
+  }
   const std::filesystem::path out(o.outDir);
   auto rowFile = [&](const json& identity) { return out / "rows" / (rowKey(identity) + ".json"); };
   samples::createOutputDirectory(o.outDir);
@@ -299,7 +303,8 @@ int run(const Options& o) {
 
   json rows = json::array();
   size_t done = 0;
-  for (const std::string& sceneName : p.scenes) {
+  for (size_t sceneIndex = 0; sceneIndex < p.scenes.size(); ++sceneIndex) {
+    const std::string& sceneName = p.scenes[sceneIndex];
     std::optional<SceneRun> scene;  // prepared at its first row that is not cached
     for (const std::vector<RowSpec>& group : groups) {
       std::vector<json> identities, records(group.size());
@@ -326,7 +331,7 @@ int run(const Options& o) {
           pending.push_back(i);
       }
       if (!pending.empty()) {
-        if (!scene) scene = prepareScene(ctx, p, sceneName, cache);
+        if (!scene) scene = prepareScene(ctx, p, sceneName, scenes[sceneIndex], cache);
         std::vector<json> measured;
         if (group.front().method == "vpl-gather") {
           measured.push_back(runVplRow(p, *scene, group.front().count));
