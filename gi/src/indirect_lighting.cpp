@@ -10,6 +10,7 @@
 
 #include "engine/commands.h"
 #include "engine/rasterizer.h"
+#include "passes/adaptive_shading.h"
 #include "passes/brsm_pdf.h"
 #include "passes/ism.h"
 #include "passes/kmeans.h"
@@ -99,6 +100,7 @@ struct IndirectLighting::Impl {
         generator(ctx, maxCount),
         ism(ctx, s.ism, maxCount),
         shade(ctx),
+        adaptive(ctx, w, h),
         indirect(createIndirectImages(ctx, w, h)),
         profiler(ctx, kProfilerScopes) {
     if (s.pdf == PdfKind::Brsm) createBrsm();
@@ -139,6 +141,7 @@ struct IndirectLighting::Impl {
   Ism ism;                                    // always built: ismEnabled may change per frame
   bool ismPointsStale = true;  // the scene changed since the point pool was generated
   VsglShade shade;
+  AdaptiveShading adaptive;
   IndirectImages indirect;
   std::optional<engine::Image> debugVisibility;  // created with the first debug frame
   engine::GpuProfiler profiler;
@@ -152,11 +155,17 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance)
   FramePlan plan;
   plan.visibility = s.ismEnabled;
   plan.glossy = s.glossy;
-  plan.skySkipped = s.planner.skipSky;
+  plan.adaptive = s.adaptive.enabled;
+  plan.skySkipped = s.planner.skipSky && !plan.adaptive;  // adaptive shading never queues sky
   if (!s.ismEnabled) plan.reasons.push_back("ism: off in the settings: no ISM build or test");
   if (!s.glossy) plan.reasons.push_back("glossy: off in the settings: no glossy shading");
-  if (s.planner.skipSky)
+  if (plan.skySkipped)
     plan.reasons.push_back("sky: subgroups that see only sky skip the VSGL loop");
+  if (s.adaptive.enabled)
+    plan.reasons.push_back("adaptive: shaded from level " +
+                           std::to_string(s.adaptive.coarsestLevel) +
+                           " down, interpolated where surface, material and light agree; sky "
+                           "never shaded");
   const float power = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
   if (s.planner.skipWithoutBounce && !(power > 0.0f)) {
     plan.bounce = false;
@@ -169,7 +178,7 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance)
         "scene: no surface reflects (SceneGeometry.maxReflectance = 0): no RSM, PDF, VSGL, ISM "
         "or shading pass; black outputs");
   }
-  if (!plan.bounce) plan.visibility = plan.glossy = plan.skySkipped = false;
+  if (!plan.bounce) plan.visibility = plan.glossy = plan.skySkipped = plan.adaptive = false;
   return plan;
 }
 
@@ -256,8 +265,11 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
   const uint32_t flags = (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) |
                          (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
                          (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u);
-  shade.record(cmd, gbuffer, camera, {vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()},
-               indirect, &profiler);
+  const VsglShade::Inputs shading{vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()};
+  if (plan.adaptive)
+    adaptive.record(cmd, gbuffer, camera, shading, settings.adaptive, shade, indirect, &profiler);
+  else
+    shade.record(cmd, gbuffer, camera, shading, indirect, &profiler);
   if (settings.debugVsgl >= 0) {
     if (!debugVisibility) {
       engine::ImageDesc desc;
@@ -384,6 +396,10 @@ Status IndirectLighting::record(VkCommandBuffer cmd, const FrameInput& input, Fr
     return failure(e.what());
   }
   return {};
+}
+
+ShadingCounts IndirectLighting::lastShadingCounts() const {
+  return impl_->plan.adaptive ? impl_->adaptive.lastCounts() : ShadingCounts{};
 }
 
 const FramePlan& IndirectLighting::lastPlan() const {

@@ -6,6 +6,7 @@
 #include "passes/brsm_pdf.h"
 #include "passes/ism.h"
 #include "passes/kmeans.h"
+#include "shared/adaptive_shading.h"
 
 namespace gi {
 namespace {
@@ -54,6 +55,20 @@ std::string validateSettings(const Settings& s) {
   } catch (const std::exception& e) {
     return std::string("Settings.ism: ") + e.what();
   }
+  const AdaptiveSettings& a = s.adaptive;
+  if (a.coarsestLevel > ADAPTIVE_MAX_LEVEL)
+    return field("adaptive.coarsestLevel", std::to_string(a.coarsestLevel), "is outside [0, 3]");
+  if (!(a.lightTolerance >= 0.0f && a.lightTolerance <= 10.0f))
+    return field("adaptive.lightTolerance", std::to_string(a.lightTolerance), "is outside [0, 10]");
+  if (!(a.planeTolerance >= 0.0f && a.planeTolerance <= 1.0f))
+    return field("adaptive.planeTolerance", std::to_string(a.planeTolerance), "is outside [0, 1]");
+  if (!(a.normalAngle >= 0.0f && a.normalAngle <= 3.14159265f))
+    return field("adaptive.normalAngle", std::to_string(a.normalAngle), "is outside [0, pi]");
+  if (!(a.roughnessTolerance >= 0.0f && a.roughnessTolerance <= 1.0f))
+    return field("adaptive.roughnessTolerance", std::to_string(a.roughnessTolerance),
+                 "is outside [0, 1]");
+  if (!(a.f0Tolerance >= 0.0f && a.f0Tolerance <= 1.0f))
+    return field("adaptive.f0Tolerance", std::to_string(a.f0Tolerance), "is outside [0, 1]");
   if (s.debugVsgl < -1 || (s.debugVsgl >= 0 && uint32_t(s.debugVsgl) >= s.vsglCount))
     return field("debugVsgl", std::to_string(s.debugVsgl),
                  ("is neither -1 nor a VSGL index below vsglCount = " + std::to_string(s.vsglCount))

@@ -99,10 +99,18 @@ gi::Settings settingsFor(const bench::Preset& p, const std::string& method, uint
   s.brsm.importanceCount = p.importanceCount;
   s.brsm.gridSize = std::min(s.brsm.gridSize, p.rsmSize);
   if (method == "tok15") s.rule = gi::KernelRule::Tok15;
+  // The module's method with every pixel shaded: what adaptive shading saves, and costs.
+  if (method == "modified-full") s.adaptive.enabled = false;
   if (method == "kmeans-2d") s.method = gi::VsglMethod::KmeansImage;
   if (method == "kmeans-3d") s.method = gi::VsglMethod::KmeansWorld;
   if (std::string bad = gi::validateSettings(s); !bad.empty()) throw engine::Error(bad);
   return s;
+}
+
+// Whether two rows' settings make the same VSGLs (they may shade them differently).
+bool sameVsgls(const gi::Settings& a, const gi::Settings& b) {
+  return a.method == b.method && a.rule == b.rule && a.vsglCount == b.vsglCount &&
+         a.kernelScale == b.kernelScale;
 }
 
 // FNV-1a of a row's identity: its file name under rows/.
@@ -206,6 +214,7 @@ std::vector<json> runRows(engine::Context& ctx, const bench::Preset& p, SceneRun
       }
     }
   std::vector<json> rows;
+  std::vector<std::vector<glm::dvec3>> images;
   for (size_t i = 0; i < lightings.size(); ++i) {
     PassSamples& m = samples[i];
     json passes = json::array();
@@ -215,13 +224,28 @@ std::vector<json> runRows(engine::Context& ctx, const bench::Preset& p, SceneRun
                         {"p5_ms", quantile(m.times[name], 0.05)},
                         {"p95_ms", quantile(m.times[name], 0.95)},
                         {"dispatches", m.dispatches[name]}});
-    const std::vector<glm::dvec3> image =
-        samples::indirectSum(samples::readIndirect(ctx, outputs[i], p.width, p.height));
+    images.push_back(
+        samples::indirectSum(samples::readIndirect(ctx, outputs[i], p.width, p.height)));
+    const gi::ShadingCounts c = lightings[i]->lastShadingCounts();
     rows.push_back({{"passes", passes},
-                    {"error", errorRecord(image, s.reference, p)},
+                    {"error", errorRecord(images.back(), s.reference, p)},
                     {"plan", lightings[i]->lastPlan().reasons},
+                    {"shading_counts",
+                     {{"adaptive", c.adaptive},
+                      {"shaded", c.shaded},
+                      {"interpolated", c.interpolated},
+                      {"reused", c.reused},
+                      {"pixels_from", c.pixelsFrom},
+                      {"sky_pixels", c.skyPixels}}},
                     {"peak_resident_mb", peakResidentMegabytes()}});
   }
+  // Adaptive rows against the row of the same frame shaded at every pixel, when it is here.
+  for (size_t i = 0; i < settings.size(); ++i)
+    for (size_t j = 0; j < settings.size(); ++j)
+      if (settings[i].adaptive.enabled && !settings[j].adaptive.enabled &&
+          sameVsgls(settings[i], settings[j]))
+        rows[i]["error_against_full_shading"] =
+            engine::compareImages(images[i], images[j]).relativeMse;
   return rows;
 }
 

@@ -5,7 +5,9 @@
 namespace bench {
 
 Preset preset(const std::string& name) {
-  const std::vector<std::string> allMethods = {"tok15", "modified", "kmeans-2d", "kmeans-3d"};
+  // "modified-full": modified FIS with adaptive shading off (every pixel shaded).
+  const std::vector<std::string> allMethods = {"tok15", "modified", "modified-full", "kmeans-2d",
+                                               "kmeans-3d"};
   const std::vector<std::string> allScenes = {"cornell", "checker", "atrium"};
   if (name == "ci")  // one small scene: checks that every method runs and scores, not speed
     return {.name = "ci",

@@ -11,7 +11,8 @@ namespace bench {
 struct Preset {
   std::string name;
   std::vector<std::string> scenes;
-  std::vector<std::string> methods;  // vsgl_render --method names
+  // vsgl_render --method names, and modified-full: modified FIS with adaptive shading off
+  std::vector<std::string> methods;
   std::vector<uint32_t> counts;      // VSGLs N
   std::vector<float> kernelScales;   // K (filtered methods only; k-means has none)
   // RSM sides of the brute-force VPL gather rows (gi/truth, on the CPU: a row costs pixels x

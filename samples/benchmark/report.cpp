@@ -83,11 +83,34 @@ json targets(const json& machine, const json& rows) {
     const uint32_t n = r["count"];
     json t = {{"scene", scene}, {"count", n}};
     const double modified = generationMs(r);
-    const double pairs =
-        double(n) * double(r["width"].get<uint32_t>()) * double(r["height"].get<uint32_t>());
-    const double nsPerPair = passMedian(r, "vsgl shading") * 1e6 / pairs;
+    const double pixels = double(r["width"].get<uint32_t>()) * double(r["height"].get<uint32_t>());
+    // The cost of a pixel-VSGL pair from the row that shades every pixel, when there is one.
+    const json* full = find(scene, "modified-full", n);
+    const double nsPerPair = passMedian(full ? *full : r, "vsgl shading") * 1e6 / (n * pixels);
     t["shading_ns_per_pair"] = nsPerPair;
     t["shading_peak_fmas_per_pair"] = nsPerPair * machine["fma_peak_gflops"].get<double>() / 2.0;
+    if (full && passMedian(r, "frame") > 0.0 && passMedian(r, "vsgl shading") > 0.0) {
+      const json& c = r["shading_counts"];
+      uint32_t shaded = 0;
+      for (const json& level : c["shaded"]) shaded += level.get<uint32_t>();
+      const double surface = pixels - c["sky_pixels"].get<double>();
+      json from = json::array();
+      for (const json& level : c["pixels_from"]) from.push_back(level.get<double>() / surface);
+      t["full_frame_ms"] = passMedian(*full, "frame");
+      t["adaptive_frame_ms"] = passMedian(r, "frame");
+      t["adaptive_frame_speedup"] = passMedian(*full, "frame") / passMedian(r, "frame");
+      t["adaptive_shading_speedup"] =
+          passMedian(*full, "vsgl shading") / passMedian(r, "vsgl shading");
+      t["full_relative_mse"] = (*full)["error"]["relative_mse"];
+      t["adaptive_relative_mse"] = r["error"]["relative_mse"];
+      t["adaptive_relative_mse_rise"] = r["error"]["relative_mse"].get<double>() /
+                                            (*full)["error"]["relative_mse"].get<double>() -
+                                        1.0;
+      t["shaded_fraction"] = shaded / surface;
+      t["light_from_level"] = from;
+      if (r.contains("error_against_full_shading"))
+        t["adaptive_relative_mse_against_full"] = r["error_against_full_shading"];
+    }
     if (const json* tok15 = find(scene, "tok15", n); tok15 && generationMs(*tok15) > 0.0)
       t["modified_over_tok15_generation"] = modified / generationMs(*tok15);
     const json* best = nullptr;
@@ -136,6 +159,16 @@ void writeReport(const std::filesystem::path& dir, const json& machine, const js
           t["kmeans_over_modified_frame"].get<double>(), t["kmeans_relative_mse"].get<double>(),
           t["modified_relative_mse"].get<double>(), t.value("modified_over_tok15_generation", 0.0),
           t["shading_ns_per_pair"].get<double>(), t["shading_peak_fmas_per_pair"].get<double>());
+  for (const json& t : summary)
+    if (t.contains("adaptive_frame_speedup"))
+      std::printf(
+          "%s N=%u: adaptive shading %.2fx faster frame (shading %.2fx), %.1f %% of the surface "
+          "pixels shaded; relMSE %.5f -> %.5f (%+.1f %%)\n",
+          t["scene"].get<std::string>().c_str(), t["count"].get<uint32_t>(),
+          t["adaptive_frame_speedup"].get<double>(), t["adaptive_shading_speedup"].get<double>(),
+          100.0 * t["shaded_fraction"].get<double>(), t["full_relative_mse"].get<double>(),
+          t["adaptive_relative_mse"].get<double>(),
+          100.0 * t["adaptive_relative_mse_rise"].get<double>());
   for (const auto& [scene, front] : fronts.items()) {
     std::printf("%s Pareto front (frame ms, relMSE):", scene.c_str());
     for (const json& f : front)

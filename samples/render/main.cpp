@@ -102,11 +102,26 @@ int run(const render::Options& o) {
       for (const auto& pass : indirect->lastFrameTimes())
         passTimes.add("gi " + pass.name, pass.ms, pass.dispatches);
   }
-  passTimes.print(o.frames, indirect ? o.gi.vsglCount : 0, o.width * o.height);
+  // Adaptive shading's work in the last frame: texels shaded per level instead of every pixel.
+  const gi::ShadingCounts counts = indirect ? indirect->lastShadingCounts() : gi::ShadingCounts{};
+  uint32_t shaded = o.width * o.height;
+  if (counts.adaptive)
+    shaded = counts.shaded[0] + counts.shaded[1] + counts.shaded[2] + counts.shaded[3];
+  passTimes.print(o.frames, indirect ? o.gi.vsglCount : 0, shaded);
   // The effect planner's decisions for the last frame: what it left out, and why.
   if (indirect)
     for (const std::string& reason : indirect->lastPlan().reasons)
       std::printf("plan: %s\n", reason.c_str());
+  if (counts.adaptive) {
+    const uint32_t surface = o.width * o.height - counts.skyPixels;
+    std::printf("adaptive shading: %u texels shaded for %u surface pixels (%.1f %%); per level:",
+                shaded, surface, 100.0 * shaded / std::max(surface, 1u));
+    for (uint32_t level = 0; level < counts.shaded.size(); ++level)
+      std::printf(" L%u %u shaded, %u interpolated, light of %.1f %% of the pixels;", level,
+                  counts.shaded[level], counts.interpolated[level],
+                  100.0 * counts.pixelsFrom[level] / std::max(surface, 1u));
+    std::printf("\n");
+  }
   // The machine's FMA and memory peaks in the same run, to read the pass times against
   // (benchmarks report fractions of them; absolute times on a shared machine drift).
   const engine::FmaPeak peak = engine::measureFmaPeak(ctx);

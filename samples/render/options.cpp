@@ -47,6 +47,12 @@ const char* usage() {
          "  --ism-size N         ISM side per VSGL, a power of two in 16..256 (default 64)\n"
          "  --no-glossy          skip the glossy (GGX) indirect term\n"
          "  --planner on|off     the effect planner's decisions (default on; docs/integration.md)\n"
+         "  --adaptive on|off    adaptive shading: coarse to fine, interpolated where the surface\n"
+         "                       and the light agree (default on; "
+         "docs/techniques/adaptive-shading.md)\n"
+         "  --adaptive-level L   its coarsest level, 0..3: one shaded pixel in 2^L x 2^L (default "
+         "2)\n"
+         "  --adaptive-tolerance T  light spread allowed for interpolation, 0..10 (default 0.2)\n"
          "  --debug-vsgl N       VSGL whose visibility is drawn (default: the most powerful)\n";
 }
 
@@ -126,6 +132,12 @@ Options parseOptions(int argc, char** argv) {
       o.gi.planner = parseChoice<gi::PlannerSettings>(
           arg, args.value(),
           {{"on", gi::PlannerSettings{}}, {"off", gi::PlannerSettings{false, false}}});
+    else if (arg == "--adaptive")  // off, or the coarsest level of adaptive shading
+      o.gi.adaptive.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
+    else if (arg == "--adaptive-level")
+      o.gi.adaptive.coarsestLevel = parseUint(arg, args.value(), 0, 3);
+    else if (arg == "--adaptive-tolerance")
+      o.gi.adaptive.lightTolerance = parseFloat(arg, args.value(), 0.0f, 10.0f);
     else if (arg == "--debug-vsgl")
       o.debugVsgl = static_cast<int32_t>(parseUint(arg, args.value(), 0, 65535));
     else if (arg == "--help" || arg == "-h")

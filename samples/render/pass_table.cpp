@@ -12,14 +12,15 @@ void PassTable::add(const std::string& name, double ms, uint32_t dispatches) {
   dispatches_[name] = dispatches;
 }
 
-void PassTable::print(uint32_t frames, uint32_t vsglCount, uint32_t pixels) const {
+void PassTable::print(uint32_t frames, uint32_t vsglCount, uint32_t shadedPixels) const {
   std::printf("GPU time per pass, median of %u frames (ms), and compute dispatches per frame:\n",
               frames);
   for (const auto& name : order_) {
     const double ms = engine::median(times_.at(name));
     std::printf("  %-34s %9.3f %5u", name.c_str(), ms, dispatches_.at(name));
     if (name == "gi vsgl shading" && vsglCount > 0)
-      std::printf("   (%.2f ns per pixel-VSGL pair)", ms * 1e6 / (double(vsglCount) * pixels));
+      std::printf("   (%.2f ns per shaded pixel-VSGL pair)",
+                  ms * 1e6 / (double(vsglCount) * shadedPixels));
     std::printf("\n");
   }
 }

@@ -8,6 +8,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_ballot : require
 
+#include "shared/adaptive_shading.h"
 #include "shared/vsgl.h"
 #include "shared/vsgl_shade.h"
 #include "common/camera_ray.glsl"
@@ -25,6 +26,11 @@ layout(binding = 5, rgba32f) uniform writeonly image2D outDiffuse;
 layout(binding = 6, rgba32f) uniform writeonly image2D outGlossy;
 layout(binding = 7, r32ui) uniform readonly uimage2D ismAtlas;
 layout(std430, binding = 8) readonly buffer SgGgxAlbedoTable { vec2 kSgGgxAlbedo[]; };
+// VSGL_SHADE_QUEUE: the texels to shade (bound, unread, otherwise).
+layout(std430, binding = 9) readonly buffer Queue {
+  AdaptiveQueueHeader head;
+  uint entries[];
+};
 layout(push_constant) uniform Push { VsglShadePush pc; };
 layout(constant_id = 0) const uint kFlags = VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY;
 
@@ -83,9 +89,25 @@ void addLobe(ShadeLobe lobe, float visibility, vec3 receiver, vec3 normal, bool 
 }
 
 void main() {
+  const bool queued = (kFlags & VSGL_SHADE_QUEUE) != 0u;
+  // The pixel whose G-buffer is shaded, and where its light is stored: the same pixel, or with
+  // a queue, the queued texel of level pc.level at its representative pixel.
   uvec2 pixel = gl_GlobalInvocationID.xy;
+  uvec2 target = pixel;
   // No early return: every invocation takes part in the broadcasts below.
   bool inside = all(lessThan(pixel, pc.viewport));
+  if (queued) {
+    uint index = gl_WorkGroupID.x * ADAPTIVE_QUEUE_GROUP + gl_LocalInvocationIndex;
+    inside = index < head.shaded;
+    uint entry = entries[min(index, head.shaded - 1u)];
+    target = uvec2(entry & ((1u << ADAPTIVE_PACK_SHIFT) - 1u), entry >> ADAPTIVE_PACK_SHIFT);
+    pixel = adaptiveRepresentative(target, pc.level);
+  }
+  // Above level 0 the level images hold the diffuse term without the albedo, and in alpha the
+  // level (diffuse) and 1 for light shaded at the texel's representative pixel (glossy).
+  bool modulate = !queued || pc.level == 0u;
+  float outAlpha = modulate ? 1.0 : float(pc.level);
+  ivec2 store = ivec2(target);
   ivec2 coord = ivec2(min(pixel, pc.viewport - 1u));
   float depth = imageLoad(gDepth, coord).r;
   bool shaded = inside && depth < 1.0;  // depth 1 = sky: never shaded
@@ -117,8 +139,8 @@ void main() {
   // The planner's sky skip: a subgroup with no pixel to shade has nothing to broadcast for.
   if ((kFlags & VSGL_SHADE_SKIP_SKY) != 0u && subgroupBallotBitCount(subgroupBallot(shaded)) == 0u) {
     if (inside) {
-      imageStore(outDiffuse, coord, vec4(0.0, 0.0, 0.0, 1.0));
-      imageStore(outGlossy, coord, vec4(0.0, 0.0, 0.0, 1.0));
+      imageStore(outDiffuse, store, vec4(0.0, 0.0, 0.0, outAlpha));
+      imageStore(outGlossy, store, vec4(0.0, 0.0, 0.0, 1.0));
     }
     return;
   }
@@ -149,7 +171,8 @@ void main() {
     }
   }
   if (inside) {
-    imageStore(outDiffuse, coord, vec4(shaded ? diffuseSum * diffuseRoughness.rgb : vec3(0.0), 1.0));
-    imageStore(outGlossy, coord, vec4(shaded ? glossySum : vec3(0.0), 1.0));
+    vec3 diffuse = modulate ? diffuseSum * diffuseRoughness.rgb : diffuseSum;
+    imageStore(outDiffuse, store, vec4(shaded ? diffuse : vec3(0.0), outAlpha));
+    imageStore(outGlossy, store, vec4(shaded ? glossySum : vec3(0.0), 1.0));
   }
 }

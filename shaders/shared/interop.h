@@ -19,13 +19,16 @@ using glm::uvec2;
 using glm::uvec4;
 using glm::vec2;
 using glm::vec4;
+using glm::min;
 }  // namespace gpu
+#define SHARED_INLINE inline
 #define SHARED_ASSERT_SIZE(type, bytes) static_assert(sizeof(gpu::type) == (bytes), #type " layout")
 #define SHARED_ASSERT_OFFSET(type, member, bytes) \
   static_assert(offsetof(gpu::type, member) == (bytes), #type "." #member " offset")
 #else
 #define SHARED_BEGIN
 #define SHARED_END
+#define SHARED_INLINE
 #define SHARED_ASSERT_SIZE(type, bytes)
 #define SHARED_ASSERT_OFFSET(type, member, bytes)
 #endif

@@ -14,7 +14,10 @@
 #define VSGL_SHADE_GLOSSY 1u      // the GGX term (off: the glossy image is 0)
 #define VSGL_SHADE_VISIBILITY 2u  // ISM visibility per pixel-VSGL pair (off: 1)
 #define VSGL_SHADE_SKIP_SKY 4u    // subgroups that see only sky skip the VSGL loop
-#define VSGL_SHADE_VARIANTS 8u    // every combination of the flags
+// Shade the texels of one level's adaptive-shading queue (shared/adaptive_shading.h) instead of
+// every pixel: 1-D groups of ADAPTIVE_QUEUE_GROUP, dispatched indirectly from the queue's head.
+#define VSGL_SHADE_QUEUE 8u
+#define VSGL_SHADE_VARIANTS 16u  // every combination of the flags
 // Incoming-radiance log amplitudes are clamped here before exp(): e^80 ~ 5.5e34 keeps a
 // receiver touching a zero-variance lobe finite (vsgl-math.md section 12, case 12) and, unlike
 // +inf, never turns into NaN when multiplied by a zero lighting integral.
@@ -28,9 +31,12 @@ struct VsglShadePush {
   uvec2 viewport;
   uint vsglCount;
   IsmParams ism;  // the atlas's layout and biases (read with VSGL_SHADE_VISIBILITY)
+  // VSGL_SHADE_QUEUE: the queue's level. Above level 0 the outputs are that level's images:
+  // diffuse without the albedo, alpha = the level.
+  uint level;
 };
 
 SHARED_END
 
-SHARED_ASSERT_SIZE(VsglShadePush, 124);
+SHARED_ASSERT_SIZE(VsglShadePush, 128);
 #endif

@@ -17,19 +17,13 @@
 #include "reference/ism_reference.h"
 #include "reference/vsgl_shade_reference.h"
 #include "shared/vsgl_shade.h"
+#include "test_vsgls.h"
 
 namespace {
 
 constexpr uint32_t kWidth = 48, kHeight = 32;
 
-gpu::VsglLobe lobe(glm::vec3 mean, float variance, glm::vec3 axis, float sharpness,
-                   glm::vec3 power) {
-  gpu::VsglLobe l{};
-  l.meanVariance = glm::vec4(mean, variance);
-  l.axisSharpness = glm::vec4(glm::normalize(axis), sharpness);
-  l.power = glm::vec4(power, 0.2126f * power.r + 0.7152f * power.g + 0.0722f * power.b);
-  return l;
-}
+using testing_gpu::vsglLobe;
 
 class VsglShadeTest : public testing_gpu::GpuTest {
  protected:
@@ -129,17 +123,18 @@ std::vector<gpu::Vsgl> hardCaseVsgls(const engine::Scene& scene, const gi::Shade
     const float fi = float(i);
     const glm::vec3 axis(std::sin(2.4f * fi), std::cos(1.7f * fi), std::sin(0.9f * fi + 1.0f));
     const float variance = 1e-4f * std::pow(10.0f, float(i % 4));
-    add(lobe(mean, variance, axis, 2.2925f, glm::vec3(1.0f, 0.7f, 0.4f)),
-        lobe(mean, variance, -axis, std::pow(10.0f, float(i % 5)), glm::vec3(0.3f, 0.5f, 1.0f)));
+    add(vsglLobe(mean, variance, axis, 2.2925f, glm::vec3(1.0f, 0.7f, 0.4f)),
+        vsglLobe(mean, variance, -axis, std::pow(10.0f, float(i % 5)),
+                 glm::vec3(0.3f, 0.5f, 1.0f)));
   }
   // Zero variance (single texel), zero sharpness (opposing normals), no power in one lobe.
-  add(lobe(centre, 0.0f, {0, -1, 0}, 2.2925f, glm::vec3(2.0f)),
-      lobe(centre, 0.0f, {0, -1, 0}, 0.0f, glm::vec3(0.0f)));
-  add(lobe(centre + glm::vec3(0.1f), 1e-3f, {1, 0, 0}, 0.0f, glm::vec3(0.5f)),
-      lobe(centre, 1e-3f, {1, 0, 0}, 2.0e12f, glm::vec3(0.5f)));
+  add(vsglLobe(centre, 0.0f, {0, -1, 0}, 2.2925f, glm::vec3(2.0f)),
+      vsglLobe(centre, 0.0f, {0, -1, 0}, 0.0f, glm::vec3(0.0f)));
+  add(vsglLobe(centre + glm::vec3(0.1f), 1e-3f, {1, 0, 0}, 0.0f, glm::vec3(0.5f)),
+      vsglLobe(centre, 1e-3f, {1, 0, 0}, 2.0e12f, glm::vec3(0.5f)));
   // A receiver at the lobe's mean (section 12, case 12) and huge power (case 5).
-  add(lobe(glm::vec3(at.position), 1e-6f, glm::vec3(at.normal), 2.2925f, glm::vec3(1.0f)),
-      lobe(centre - glm::vec3(0.2f), 1e-2f, {0, 1, 0}, 50.0f, glm::vec3(4e6f)));
+  add(vsglLobe(glm::vec3(at.position), 1e-6f, glm::vec3(at.normal), 2.2925f, glm::vec3(1.0f)),
+      vsglLobe(centre - glm::vec3(0.2f), 1e-2f, {0, 1, 0}, 50.0f, glm::vec3(4e6f)));
   return vsgls;
 }
 
@@ -236,8 +231,8 @@ TEST_F(VsglShadeTest, FarTinyVarianceIsPointLight) {
   const float sharpness = 20.0f;
   const glm::vec3 power(3.0e3f, 2.0e3f, 1.0e3f);
   gpu::Vsgl v{};
-  v.diffuse = lobe(mean, 1e-12f, axis, sharpness, power);
-  v.specular = lobe(mean, 1e-12f, axis, sharpness, glm::vec3(0.0f));
+  v.diffuse = vsglLobe(mean, 1e-12f, axis, sharpness, power);
+  v.specular = vsglLobe(mean, 1e-12f, axis, sharpness, glm::vec3(0.0f));
   const Shaded gpu = shade({v}, VSGL_SHADE_GLOSSY);  // no visibility: the lobe is outside the box
 
   size_t compared = 0;

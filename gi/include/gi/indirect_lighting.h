@@ -11,6 +11,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
@@ -139,7 +140,23 @@ struct FramePlan {
   bool visibility = true;            // the ISMs were built and tested
   bool glossy = true;                // the glossy term was shaded
   bool skySkipped = true;            // subgroups that see only sky skipped the VSGL loop
+  bool adaptive = true;              // shaded on the adaptive pyramid (Settings::adaptive)
   std::vector<std::string> reasons;  // one line per decision that left work out
+};
+
+// What adaptive shading (Settings::adaptive) did in the last frame, per level 0..3: level L has
+// one texel per 2^L x 2^L pixels. Valid like lastFrameTimes().
+struct ShadingCounts {
+  bool adaptive = false;             // false: adaptive shading was off and every pixel was shaded
+  std::array<uint32_t, 4> shaded{};  // texels shaded (the cost: each x vsglCount pairs)
+  std::array<uint32_t, 4> interpolated{};  // texels filled from their parents
+  // Texels that could not interpolate but took the light their first parent shaded at the same
+  // pixel (each pixel is shaded at most once: the cost never exceeds full-rate shading).
+  std::array<uint32_t, 4> reused{};
+  // Pixels whose light was shaded at each level, followed through the interpolation (sky
+  // pixels excluded).
+  std::array<uint32_t, 4> pixelsFrom{};
+  uint32_t skyPixels = 0;
 };
 
 struct PassTime {
@@ -175,6 +192,9 @@ class IndirectLighting {
   // once that frame's submission has completed and before the next record(); empty if its
   // timestamps are not available yet. Never waits.
   std::vector<PassTime> lastFrameTimes() const;
+  // Adaptive shading's counts of the last recorded frame (valid once its submission has
+  // completed and before the next record(); never waits).
+  ShadingCounts lastShadingCounts() const;
   // The plan of the last recorded frame (valid right after record()).
   const FramePlan& lastPlan() const;
 

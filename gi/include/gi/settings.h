@@ -101,6 +101,31 @@ struct PlannerSettings {
   bool skipSky = true;
 };
 
+// Adaptive shading (docs/techniques/adaptive-shading.md, after [S4] section 3.2): the VSGL sum
+// is shaded on a pyramid of the G-buffer, coarse to fine, and interpolated wherever a texel's
+// four parents lie on its surface, share its material and agree on the light. Off: every pixel
+// is shaded. Shading cost ~ the texels shaded (FrameStats::shaded) x vsglCount.
+struct AdaptiveSettings {
+  bool enabled = true;
+  // The coarsest level, [0, 3]: level L shades one pixel in 2^L x 2^L. Every texel of it that
+  // sees a surface is shaded. 0 shades every pixel through the level-0 queue (the same image as
+  // enabled = false, for testing).
+  uint32_t coarsestLevel = 2;
+  // Interpolate only when the parents' light, as this texel would show it (luminance of albedo
+  // x diffuse + glossy), spreads by at most this fraction of its mean, [0, 10]. Smaller = more
+  // texels shaded, closer to full shading; 0 interpolates only where the light is flat.
+  float lightTolerance = 0.2f;
+  // A parent is on the texel's surface when the texel lies within this fraction of its distance
+  // from the eye of the parent's tangent plane, [0, 1] ...
+  float planeTolerance = 0.01f;
+  // ... and their normals differ by at most this angle, radians, [0, pi].
+  float normalAngle = 0.35f;
+  // Largest difference of perceptual roughness, [0, 1], and of any F0 channel, [0, 1], between
+  // a texel and its parents: light is not carried across a material edge.
+  float roughnessTolerance = 0.05f;
+  float f0Tolerance = 0.02f;
+};
+
 struct Settings {
   // Creation. RSM side in texels, a power of two in [16, 2048] ([S3]: 512). Cost ~ rsmSize^2 in
   // the RSM, attribute and mip passes (about 0.3 us per texel on lavapipe).
@@ -132,6 +157,7 @@ struct Settings {
   // (measured on lavapipe: 252 -> 155 ns per pixel-VSGL pair with ISMs).
   bool glossy = true;
   PlannerSettings planner;
+  AdaptiveSettings adaptive;
   // Debug: index of the VSGL whose ISM visibility is written to FrameOutput::debugVisibility,
   // or -1 for none. Cost: one extra pass over the pixels.
   int32_t debugVsgl = -1;

@@ -2,6 +2,7 @@
 
 #include "engine/commands.h"
 #include "reference/sg_math.h"
+#include "shared/adaptive_shading.h"
 #include "shared/vsgl.h"
 #include "shared/vsgl_shade.h"
 #include "spirv/vsgl_shade.h"
@@ -25,7 +26,9 @@ IndirectImages createIndirectImages(engine::Context& ctx, uint32_t width, uint32
 VsglShade::VsglShade(engine::Context& ctx)
     : ctx_(&ctx),
       albedoTable_(ctx, sizeof(glm::vec2) * kGgxAlbedoTableSize * kGgxAlbedoTableSize,
-                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload) {
+                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload),
+      noQueue_(ctx, sizeof(gpu::AdaptiveQueueHeader) + sizeof(uint32_t),
+               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly) {
   // Host-visible memory: written here without a submit (the module never submits).
   std::vector<glm::vec2> table;
   for (int i = 0; i < kGgxAlbedoTableSize; ++i)
@@ -40,6 +43,8 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
                         " VSGLs exceed the VSGL buffer");
   if (in.flags >= VSGL_SHADE_VARIANTS)
     throw engine::Error("VSGL shading: unknown flags " + std::to_string(in.flags));
+  const bool queued = (in.flags & VSGL_SHADE_QUEUE) != 0;
+  if (queued && !in.queue) throw engine::Error("VSGL shading: a queued variant without a queue");
   std::optional<engine::ComputeProgram>& program = programs_[in.flags];
   if (!program) {
     const uint32_t specialization[] = {in.flags};
@@ -49,10 +54,11 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
                         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                     uint32_t(sizeof(gpu::VsglShadePush)), specialization);
   }
-  engine::ProfileScope scope(profiler, cmd, "vsgl shading");
+  engine::ProfileScope scope(profiler, cmd,
+                             queued ? "vsgl shading L" + std::to_string(in.level) : "vsgl shading");
   using engine::Binding;
   gpu::VsglShadePush push{};
   const engine::RelativeUnprojection unprojection = engine::relativeUnprojection(camera);
@@ -61,14 +67,23 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
   push.viewport = {gbuffer.width, gbuffer.height};
   push.vsglCount = in.vsglCount;
   push.ism = in.ism;
-  program->dispatch(cmd,
-                    {Binding::storageImage(gbuffer.depth), Binding::storageImage(gbuffer.normal),
-                     Binding::storageImage(gbuffer.diffuse),
-                     Binding::storageImage(gbuffer.specular), Binding::storage(*in.vsgls),
-                     Binding::storageImage(out.diffuse), Binding::storageImage(out.glossy),
-                     Binding::storageImage(*in.ismAtlas, 0), Binding::storage(albedoTable_)},
-                    push, engine::groupCount(gbuffer.width, VSGL_SHADE_GROUP_X),
-                    engine::groupCount(gbuffer.height, VSGL_SHADE_GROUP_Y));
+  push.level = in.level;
+  const engine::Buffer& queue = queued ? *in.queue : noQueue_;
+  const std::initializer_list<Binding> bindings = {Binding::storageImage(gbuffer.depth),
+                                                   Binding::storageImage(gbuffer.normal),
+                                                   Binding::storageImage(gbuffer.diffuse),
+                                                   Binding::storageImage(gbuffer.specular),
+                                                   Binding::storage(*in.vsgls),
+                                                   Binding::storageImage(out.diffuse),
+                                                   Binding::storageImage(out.glossy),
+                                                   Binding::storageImage(*in.ismAtlas, 0),
+                                                   Binding::storage(albedoTable_),
+                                                   Binding::storage(queue)};
+  if (queued)
+    program->dispatchIndirect(cmd, bindings, push, queue, 0);
+  else
+    program->dispatch(cmd, bindings, push, engine::groupCount(gbuffer.width, VSGL_SHADE_GROUP_X),
+                      engine::groupCount(gbuffer.height, VSGL_SHADE_GROUP_Y));
   engine::computeBarrier(cmd);
 }
 

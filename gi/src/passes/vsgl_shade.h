@@ -32,6 +32,10 @@ class VsglShade {
     uint32_t flags = 0;                       // VSGL_SHADE_*: the variant
     const engine::Image* ismAtlas = nullptr;  // Ism::atlas(), bound even when not read
     gpu::IsmParams ism{};                     // Ism::params()
+    // VSGL_SHADE_QUEUE: the level's queue (shared/adaptive_shading.h, its head holds the
+    // indirect dispatch) and the level; `out` is then that level's images.
+    const engine::Buffer* queue = nullptr;
+    uint32_t level = 0;
   };
 
   // `camera`: the G-buffer camera's view (positions are rebuilt relative to its eye,
@@ -44,6 +48,7 @@ class VsglShade {
   engine::Context* ctx_;
   std::array<std::optional<engine::ComputeProgram>, VSGL_SHADE_VARIANTS> programs_;
   engine::Buffer albedoTable_;  // vec2[17 x 17], gi::ggxSpecularAlbedoNode (sg_lighting.glsl)
+  engine::Buffer noQueue_;      // bound as the queue by the variants that do not read one
 };
 
 }  // namespace gi

@@ -1,0 +1,129 @@
+#include "passes/adaptive_shading.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "engine/commands.h"
+#include "spirv/adaptive_decide.h"
+
+namespace gi {
+
+gpu::AdaptiveDecidePush adaptiveDecidePush(const AdaptiveSettings& settings,
+                                           const engine::View& camera, uint32_t width,
+                                           uint32_t height, uint32_t level) {
+  gpu::AdaptiveDecidePush push{};
+  push.invViewProjRelative = engine::relativeUnprojection(camera).invViewProjRelative;
+  push.viewport = {width, height};
+  push.level = level;
+  push.coarsest = settings.coarsestLevel;
+  push.planeTolerance = settings.planeTolerance;
+  push.normalCosine = std::cos(settings.normalAngle);
+  push.roughnessTolerance = settings.roughnessTolerance;
+  push.f0Tolerance = settings.f0Tolerance;
+  push.lightTolerance = settings.lightTolerance;
+  return push;
+}
+
+namespace {
+
+engine::Buffer queueBuffer(engine::Context& ctx, uint32_t width, uint32_t height, uint32_t level) {
+  const VkDeviceSize texels =
+      VkDeviceSize{gpu::adaptiveLevelSize(width, level)} * gpu::adaptiveLevelSize(height, level);
+  return engine::Buffer(ctx, sizeof(gpu::AdaptiveQueueHeader) + 4 * texels,
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                        engine::MemoryUsage::GpuOnly);
+}
+
+}  // namespace
+
+AdaptiveShading::AdaptiveShading(engine::Context& ctx, uint32_t width, uint32_t height)
+    : ctx_(&ctx),
+      width_(width),
+      height_(height),
+      decide_(ctx, "adaptive_decide", kAdaptiveDecideSpv,
+              std::vector<VkDescriptorType>{
+                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+              uint32_t(sizeof(gpu::AdaptiveDecidePush))),
+      counts_(ctx, sizeof(gpu::AdaptiveQueueHeader) * (ADAPTIVE_MAX_LEVEL + 1),
+              VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::Readback) {
+  for (uint32_t level = 1; level <= ADAPTIVE_MAX_LEVEL; ++level)
+    levels_.push_back(createIndirectImages(ctx, gpu::adaptiveLevelSize(width, level),
+                                           gpu::adaptiveLevelSize(height, level)));
+  for (uint32_t level = 0; level <= ADAPTIVE_MAX_LEVEL; ++level)
+    queues_.push_back(queueBuffer(ctx, width, height, level));
+  std::memset(counts_.mapped(), 0, counts_.size());
+}
+
+void AdaptiveShading::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
+                             const engine::View& camera, const VsglShade::Inputs& in,
+                             const AdaptiveSettings& settings, VsglShade& shade,
+                             IndirectImages& out, engine::GpuProfiler* profiler) {
+  engine::ProfileScope scope(profiler, cmd, "vsgl shading");
+  const uint32_t coarsest = settings.coarsestLevel;
+  // Empty queues whose indirect dispatch has 0 x 1 x 1 groups.
+  gpu::AdaptiveQueueHeader empty{};
+  empty.groupsY = empty.groupsZ = 1;
+  for (uint32_t level = 0; level <= coarsest; ++level)
+    engine::updateBuffer(cmd, queues_[level], &empty, sizeof(empty));
+  using engine::Binding;
+  for (uint32_t level = coarsest + 1; level-- > 0;) {
+    IndirectImages& target = level == 0 ? out : levels_[level - 1];
+    // The parents: level + 1, or at the coarsest level (never read) the level's own images.
+    IndirectImages& parent = level < coarsest ? levels_[level] : target;
+    const gpu::AdaptiveDecidePush push =
+        adaptiveDecidePush(settings, camera, width_, height_, level);
+    {
+      engine::ProfileScope decideScope(profiler, cmd, "adaptive decide L" + std::to_string(level));
+      decide_.dispatch(
+          cmd,
+          {Binding::storageImage(gbuffer.depth), Binding::storageImage(gbuffer.normal),
+           Binding::storageImage(gbuffer.diffuse), Binding::storageImage(gbuffer.specular),
+           Binding::storageImage(parent.diffuse), Binding::storageImage(parent.glossy),
+           Binding::storageImage(target.diffuse), Binding::storageImage(target.glossy),
+           Binding::storage(queues_[level])},
+          push, engine::groupCount(gpu::adaptiveLevelSize(width_, level), ADAPTIVE_GROUP_X),
+          engine::groupCount(gpu::adaptiveLevelSize(height_, level), ADAPTIVE_GROUP_Y));
+      engine::computeBarrier(cmd);
+    }
+    VsglShade::Inputs queued = in;
+    queued.flags |= VSGL_SHADE_QUEUE;
+    queued.queue = &queues_[level];
+    queued.level = level;
+    shade.record(cmd, gbuffer, camera, queued, target, profiler);
+  }
+  // The heads, for lastCounts() once the frame has completed.
+  engine::computeToTransferBarrier(cmd);
+  for (uint32_t level = 0; level <= ADAPTIVE_MAX_LEVEL; ++level) {
+    const VkBufferCopy copy{0, level * sizeof(gpu::AdaptiveQueueHeader),
+                            sizeof(gpu::AdaptiveQueueHeader)};
+    if (level <= coarsest)
+      vkCmdCopyBuffer(cmd, queues_[level].handle(), counts_.handle(), 1, &copy);
+    else
+      vkCmdFillBuffer(cmd, counts_.handle(), copy.dstOffset, copy.size, 0);
+  }
+  engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                        VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
+ShadingCounts AdaptiveShading::lastCounts() const {
+  std::array<gpu::AdaptiveQueueHeader, ADAPTIVE_MAX_LEVEL + 1> heads;
+  std::memcpy(heads.data(), counts_.mapped(), sizeof(heads));
+  ShadingCounts c;
+  c.adaptive = true;
+  for (uint32_t level = 0; level <= ADAPTIVE_MAX_LEVEL; ++level) {
+    c.shaded[level] = heads[level].shaded;
+    c.interpolated[level] = heads[level].interpolated;
+    c.reused[level] = heads[level].reused;
+    c.pixelsFrom[level] = heads[0].fromLevel[level];
+  }
+  c.pixelsFrom[0] += heads[0].shaded;
+  c.skyPixels = heads[0].sky;
+  return c;
+}
+
+}  // namespace gi

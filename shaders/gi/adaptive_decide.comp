@@ -1,0 +1,161 @@
+#version 460
+// One level of adaptive shading (shaders/shared/adaptive_shading.h, docs/techniques/
+// adaptive-shading.md): each texel of level L either takes its light from its four parents at
+// level L + 1 by bilinear interpolation, or joins the level's queue to be shaded. It is
+// interpolated only when every parent sees the same surface and material ([S4] section 3.2
+// weights parents by a depth Gaussian; here a parent off the texel's surface sends the texel to
+// be shaded instead, so light never bleeds across an edge) and the parents' light agrees within
+// the tolerance (a measured stand-in for [S4]'s predicted bandwidth, vsgl-math.md section 11).
+// A texel that cannot interpolate but whose representative pixel is its first parent's, where
+// that parent's light was shaded, reuses that light. Every texel of the coarsest level is
+// shaded. The CPU twin is
+// gi/src/reference/adaptive_reference.cpp.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/adaptive_shading.h"
+#include "common/camera_ray.glsl"
+#include "common/color.glsl"
+#include "common/octahedral.glsl"
+
+layout(local_size_x = ADAPTIVE_GROUP_X, local_size_y = ADAPTIVE_GROUP_Y) in;
+
+layout(binding = 0, r32f) uniform readonly image2D gDepth;
+layout(binding = 1, rg16_snorm) uniform readonly image2D gNormal;
+layout(binding = 2, rgba16f) uniform readonly image2D gDiffuse;
+layout(binding = 3, rgba16f) uniform readonly image2D gSpecular;
+// Level L + 1 (not read at the coarsest level): rgb = diffuse light without the albedo, or
+// glossy light; diffuse a = the level the light was shaded at, glossy a = 1 when it was shaded
+// at this texel's representative pixel (shaded or reused), 0 when interpolated.
+layout(binding = 4, rgba32f) uniform readonly image2D parentDiffuse;
+layout(binding = 5, rgba32f) uniform readonly image2D parentGlossy;
+// Level L in the same form, or at level 0 the module's outputs (albedo applied, alpha 1).
+layout(binding = 6, rgba32f) uniform writeonly image2D outDiffuse;
+layout(binding = 7, rgba32f) uniform writeonly image2D outGlossy;
+layout(std430, binding = 8) buffer Queue {
+  AdaptiveQueueHeader head;
+  uint entries[];
+};
+layout(push_constant) uniform Push { AdaptiveDecidePush pc; };
+
+// What the tests read of a representative pixel, its position relative to the eye.
+struct Surface {
+  bool sky;
+  vec3 position;
+  vec3 normal;
+  vec3 albedo;
+  float roughness;
+  vec3 f0;
+};
+
+Surface surfaceAt(uvec2 pixel) {
+  ivec2 coord = ivec2(pixel);
+  float depth = imageLoad(gDepth, coord).r;
+  vec4 diffuseRoughness = imageLoad(gDiffuse, coord);
+  Surface s;
+  s.sky = !(depth < 1.0);
+  s.position = unproject(pc.invViewProjRelative, pixelToNdc(vec2(pixel) + 0.5, pc.viewport), depth);
+  s.normal = octDecode(imageLoad(gNormal, coord).rg);
+  s.albedo = diffuseRoughness.rgb;
+  s.roughness = diffuseRoughness.a;
+  s.f0 = imageLoad(gSpecular, coord).rgb;
+  return s;
+}
+
+// The parent lies on the texel's surface (within planeTolerance of the parent's tangent plane,
+// relative to the texel's distance, and normals within the cone) and has its material. Written
+// so that a NaN anywhere fails the test: such a texel is shaded, and shading guards it.
+bool sameSurface(Surface s, Surface parent) {
+  vec3 f0Change = abs(s.f0 - parent.f0);
+  return !parent.sky &&
+         abs(dot(parent.normal, s.position - parent.position)) <=
+             pc.planeTolerance * length(s.position) &&
+         dot(s.normal, parent.normal) >= pc.normalCosine &&
+         abs(s.roughness - parent.roughness) <= pc.roughnessTolerance &&
+         max(f0Change.r, max(f0Change.g, f0Change.b)) <= pc.f0Tolerance;
+}
+
+void main() {
+  uvec2 size = uvec2(adaptiveLevelSize(pc.viewport.x, pc.level),
+                     adaptiveLevelSize(pc.viewport.y, pc.level));
+  uvec2 texel = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(texel, size))) return;
+  ivec2 store = ivec2(texel);
+  uvec2 pixel = adaptiveRepresentative(texel, pc.level);
+  Surface s = surfaceAt(pixel);
+  float alpha = pc.level == 0u ? 1.0 : 0.0;  // level 0: the module's outputs, alpha 1
+  if (s.sky) {
+    imageStore(outDiffuse, store, vec4(0.0, 0.0, 0.0, alpha));
+    imageStore(outGlossy, store, vec4(0.0, 0.0, 0.0, alpha));
+    atomicAdd(head.sky, 1u);
+    return;
+  }
+
+  bool interpolate = pc.level < pc.coarsest;
+  bool reuse = false;
+  vec3 diffuse = vec3(0.0), glossy = vec3(0.0);
+  uint origin = 0u;
+  if (interpolate) {
+    // The 2 x 2 parents around the pixel, bilinear weights from the parents' representative
+    // pixels (j 2^(L+1)); past the last parent the weights stop at 1.
+    uint parentLevel = pc.level + 1u;
+    ivec2 parentSize = ivec2(adaptiveLevelSize(pc.viewport.x, parentLevel),
+                             adaptiveLevelSize(pc.viewport.y, parentLevel));
+    ivec2 first = ivec2(texel >> 1u);
+    ivec2 last = min(first + 1, parentSize - 1);
+    vec2 t = clamp((vec2(pixel) - vec2(adaptiveRepresentative(uvec2(first), parentLevel))) /
+                       max(vec2(adaptiveRepresentative(uvec2(last - first), parentLevel)), vec2(1.0)),
+                   0.0, 1.0);
+    float lightMin = 1.0 / 0.0, lightMax = 0.0, lightSum = 0.0, largest = -1.0;
+    for (uint k = 0u; k < 4u; ++k) {
+      bvec2 upper = bvec2((k & 1u) != 0u, (k & 2u) != 0u);
+      ivec2 parent = mix(first, last, upper);
+      vec2 w2 = mix(1.0 - t, t, upper);
+      float w = w2.x * w2.y;
+      Surface p = surfaceAt(adaptiveRepresentative(uvec2(parent), parentLevel));
+      if (!sameSurface(s, p)) interpolate = false;
+      vec4 d = imageLoad(parentDiffuse, parent);
+      vec3 g = imageLoad(parentGlossy, parent).rgb;
+      // The light the texel would show from this parent: its albedo times the diffuse term.
+      float light = luminance(d.rgb * s.albedo) + luminance(g);
+      lightMin = min(lightMin, light);
+      lightMax = max(lightMax, light);
+      lightSum += light;
+      diffuse += w * d.rgb;
+      glossy += w * g;
+      if (w > largest) {
+        largest = w;
+        origin = uint(d.a);
+      }
+    }
+    // (NaN light fails the test too.)
+    if (!(lightMax - lightMin <= pc.lightTolerance * 0.25 * lightSum)) interpolate = false;
+    // An even texel shares its representative pixel with its first parent: when that parent's
+    // light was shaded there, it is this texel's light too.
+    if (!interpolate && all(equal(texel & 1u, uvec2(0u)))) {
+      vec4 d = imageLoad(parentDiffuse, first);
+      vec4 g = imageLoad(parentGlossy, first);
+      reuse = g.a == 1.0;
+      diffuse = d.rgb;
+      glossy = g.rgb;
+      origin = uint(d.a);
+    }
+  }
+  if (!interpolate && !reuse) {
+    uint index = atomicAdd(head.shaded, 1u);
+    entries[index] = texel.x | (texel.y << ADAPTIVE_PACK_SHIFT);
+    if (index % ADAPTIVE_QUEUE_GROUP == 0u) atomicAdd(head.groupsX, 1u);
+    return;
+  }
+  if (reuse)
+    atomicAdd(head.reused, 1u);
+  else
+    atomicAdd(head.interpolated, 1u);
+  if (pc.level == 0u) {
+    atomicAdd(head.fromLevel[min(origin, ADAPTIVE_MAX_LEVEL)], 1u);
+    imageStore(outDiffuse, store, vec4(diffuse * s.albedo, 1.0));
+    imageStore(outGlossy, store, vec4(glossy, 1.0));
+  } else {
+    imageStore(outDiffuse, store, vec4(diffuse, float(origin)));
+    imageStore(outGlossy, store, vec4(glossy, reuse ? 1.0 : 0.0));
+  }
+}

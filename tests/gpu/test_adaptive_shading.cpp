@@ -1,0 +1,254 @@
+// Adaptive shading (passes/adaptive_shading.cpp, adaptive_decide.comp and vsgl_shade.comp's
+// queue variant) against its double twin (reference/adaptive_reference.cpp), level by level on
+// a real G-buffer: the same texels are queued, the queued ones shade like the CPU shading
+// reference, and the others interpolate their parents as the twin does. With the coarsest level
+// at 0 the pass must reproduce full-rate shading bit for bit.
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "engine/builtin_scenes.h"
+#include "engine/commands.h"
+#include "gpu_fixture.h"
+#include "passes/adaptive_shading.h"
+#include "passes/ism.h"
+#include "reference/adaptive_reference.h"
+#include "test_vsgls.h"
+
+namespace {
+
+// Not multiples of 8: the levels' last texels are clamped at the borders.
+constexpr uint32_t kWidth = 61, kHeight = 37;
+
+using testing_gpu::vsglLobe;
+
+class AdaptiveShadingTest : public testing_gpu::GpuTest {
+ protected:
+  void SetUp() override {
+    testing_gpu::GpuTest::SetUp();
+    if (IsSkipped()) return;
+    scene_ = engine::makeBuiltinScene("cornell");
+    // 0.5 m back from the scene's camera: the box's outline against the sky is in view.
+    engine::Camera camera = scene_.cameras.at(0);
+    camera.cameraToWorld[3] += camera.cameraToWorld[2] * 0.5f;
+    view_ = engine::cameraView(camera, kWidth, kHeight);
+    gpuScene_ = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx(), scene_));
+    gbuffer_ = std::make_unique<engine::GBuffer>(renderGBuffer(*gpuScene_, view_));
+    decoded_ = engine::readbackGBuffer(ctx(), *gbuffer_);
+    // Ordinary lobes in the box, some near the walls (light that changes fast) and some in
+    // the middle (light that changes slowly).
+    const engine::Bounds b = scene_.bounds();
+    const glm::vec3 centre = 0.5f * (b.min + b.max), extent = b.max - b.min;
+    for (int i = 0; i < 10; ++i) {
+      const float t = float(i) / 10.0f, fi = float(i);
+      const glm::vec3 mean =
+          centre + extent * glm::vec3(0.3f * std::cos(6.28f * t), 0.4f * (t - 0.5f),
+                                      0.3f * std::sin(6.28f * t));
+      const glm::vec3 axis(std::sin(2.4f * fi), std::cos(1.7f * fi), std::sin(0.9f * fi + 1.0f));
+      gpu::Vsgl v{};
+      v.diffuse =
+          vsglLobe(mean, 2e-2f * float(1 + i % 3), axis, 2.2925f, glm::vec3(1.0f, 0.7f, 0.4f));
+      v.specular = vsglLobe(mean, 1e-2f, -axis, 20.0f, glm::vec3(0.3f, 0.5f, 1.0f));
+      vsgls_.push_back(v);
+    }
+  }
+
+  // The pass's outputs, as the twin's levels: [L] is level L (0 = the module's outputs).
+  struct Run {
+    std::vector<gi::AdaptiveLevel> levels;
+    std::vector<std::set<uint32_t>> queues;  // packed texels per level
+    std::vector<gpu::AdaptiveQueueHeader> heads;
+    gi::ShadingCounts counts;
+  };
+
+  Run run(const gi::AdaptiveSettings& settings) {
+    engine::Buffer buffer(ctx(), vsgls_.size() * sizeof(gpu::Vsgl),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload);
+    buffer.upload(ctx(), std::span<const gpu::Vsgl>(vsgls_));
+    gi::Ism ism(ctx(), {32, 1u << 12, 256}, uint32_t(vsgls_.size()));  // bound, never read
+    gi::VsglShade shade(ctx());
+    gi::AdaptiveShading pass(ctx(), kWidth, kHeight);
+    gi::IndirectImages out = gi::createIndirectImages(ctx(), kWidth, kHeight);
+    const gi::VsglShade::Inputs in{&buffer, uint32_t(vsgls_.size()), VSGL_SHADE_GLOSSY,
+                                   &ism.atlas(), ism.params()};
+    ctx().submitAndWait(
+        [&](VkCommandBuffer cmd) { pass.record(cmd, *gbuffer_, view_, in, settings, shade, out); });
+    Run r;
+    r.counts = pass.lastCounts();
+    for (uint32_t level = 0; level <= settings.coarsestLevel; ++level) {
+      gi::IndirectImages& images = level == 0 ? out : pass.levelImages(level);
+      const std::vector<glm::vec4> d = images.diffuse.readbackRgba32f(ctx());
+      const std::vector<glm::vec4> g = images.glossy.readbackRgba32f(ctx());
+      gi::AdaptiveLevel l;
+      l.width = gpu::adaptiveLevelSize(kWidth, level);
+      l.height = gpu::adaptiveLevelSize(kHeight, level);
+      for (size_t i = 0; i < d.size(); ++i) {
+        l.diffuse.emplace_back(d[i]);
+        l.glossy.emplace_back(g[i]);
+        l.origin.push_back(level == 0 ? 0u : uint32_t(d[i].a));
+        l.exact.push_back(level > 0 && g[i].a == 1.0f);
+      }
+      r.levels.push_back(std::move(l));
+      const std::vector<uint32_t> words = pass.queue(level).readbackAs<uint32_t>(ctx());
+      gpu::AdaptiveQueueHeader head;
+      std::memcpy(&head, words.data(), sizeof(head));
+      const size_t first = sizeof(head) / 4;
+      r.queues.emplace_back(words.begin() + first, words.begin() + first + head.shaded);
+      r.heads.push_back(head);
+    }
+    return r;
+  }
+
+  // The CPU shading reference at a pixel, diffuse without the albedo (the levels' form).
+  gi::IndirectRadiance shadeAt(glm::uvec2 pixel) const {
+    const engine::GBufferSample& s = decoded_.at(pixel.x, pixel.y);
+    const engine::CameraRay ray = engine::cameraRayReference(view_, glm::dvec2(pixel) + 0.5);
+    const glm::dmat4 inv(view_.invViewProj);
+    const glm::dvec2 ndc = (glm::dvec2(pixel) + 0.5) / glm::dvec2(kWidth, kHeight) * 2.0 - 1.0;
+    const glm::dvec4 h = inv * glm::dvec4(ndc, s.depth, 1.0);
+    gi::ShadeReceiver r;
+    r.position = glm::dvec3(h) / h.w;
+    r.view = -ray.dir;
+    r.normal = s.normal;
+    r.albedo = glm::dvec3(1.0);
+    r.f0 = s.f0;
+    r.roughness = s.roughness;
+    return gi::shadeReference(r, vsgls_, true);
+  }
+
+  engine::Scene scene_;
+  engine::View view_;
+  std::unique_ptr<engine::SceneGpu> gpuScene_;
+  std::unique_ptr<engine::GBuffer> gbuffer_;
+  engine::GBufferData decoded_;
+  std::vector<gpu::Vsgl> vsgls_;
+};
+
+uint32_t pack(uint32_t x, uint32_t y) {
+  return x | (y << ADAPTIVE_PACK_SHIFT);
+}
+
+// Level by level, the GPU's decisions against the twin's, given the GPU's own parents (so that
+// each level is checked on its own). Tolerances:
+// - Decisions: the twin rebuilds positions and decodes normals in double, the shader in fp32,
+//   so a texel whose plane, normal or light test lands within rounding of its threshold may go
+//   the other way: at most 1 % of a level's texels (and never where both agree on the sky).
+// - Queued texels: the shading reference's tolerance (test_vsgl_shade.cpp, MatchesReference):
+//   2e-3 of the value plus 1e-5 of the level's largest value.
+// - Interpolated texels: the same four parent values and weights from integer pixel positions,
+//   summed in fp32 against double: 1e-5 of the value plus 1e-7 of the largest.
+TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
+  for (uint32_t coarsest : {2u, 3u}) {
+    gi::AdaptiveSettings settings;
+    settings.coarsestLevel = coarsest;
+    // These few VSGLs light the small image unevenly: a wider tolerance than the default
+    // gives every level a mix of queued and interpolated texels.
+    settings.lightTolerance = 0.5f;
+    const Run gpu = run(settings);
+    size_t interpolatedAtZero = 0, queuedAtZero = 0, sky = 0, interpolatedAbove = 0;
+    for (uint32_t level = coarsest + 1; level-- > 0;) {
+      SCOPED_TRACE("coarsest " + std::to_string(coarsest) + ", level " + std::to_string(level));
+      const gpu::AdaptiveDecidePush push =
+          gi::adaptiveDecidePush(settings, view_, kWidth, kHeight, level);
+      const gi::AdaptiveLevel twin = gi::adaptiveLevelReference(
+          decoded_, push, level < coarsest ? &gpu.levels[level + 1] : nullptr,
+          [&](glm::uvec2 pixel) { return shadeAt(pixel); });
+      const gi::AdaptiveLevel& got = gpu.levels[level];
+      const gpu::AdaptiveQueueHeader& head = gpu.heads[level];
+      const size_t texels = size_t{twin.width} * twin.height;
+      EXPECT_EQ(head.shaded + head.interpolated + head.reused + head.sky, texels);
+      EXPECT_EQ(head.groupsX, (head.shaded + ADAPTIVE_QUEUE_GROUP - 1) / ADAPTIVE_QUEUE_GROUP);
+      EXPECT_EQ(gpu.queues[level].size(), head.shaded) << "a texel queued twice";
+      double largest = 0.0;
+      for (size_t i = 0; i < texels; ++i)
+        largest = std::max({largest, twin.diffuse[i].g, twin.glossy[i].b});
+      ASSERT_GT(largest, 0.0);
+      size_t disagree = 0, skyTexels = 0;
+      for (uint32_t y = 0; y < twin.height; ++y)
+        for (uint32_t x = 0; x < twin.width; ++x) {
+          const size_t i = twin.index({x, y});
+          const bool queued = gpu.queues[level].count(pack(x, y)) > 0;
+          if (twin.sky[i]) {
+            ++skyTexels;
+            EXPECT_FALSE(queued) << "sky texel " << x << "," << y << " queued";
+            EXPECT_EQ(got.diffuse[i], glm::dvec3(0.0));
+            continue;
+          }
+          if (queued != bool(twin.queued[i])) {
+            ++disagree;
+            continue;
+          }
+          const double relative = queued ? 2e-3 : 1e-5, floor = queued ? 1e-5 : 1e-7;
+          for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(got.diffuse[i][c], twin.diffuse[i][c],
+                        relative * std::abs(twin.diffuse[i][c]) + floor * largest)
+                << (queued ? "queued" : "interpolated") << " texel " << x << "," << y;
+            EXPECT_NEAR(got.glossy[i][c], twin.glossy[i][c],
+                        relative * std::abs(twin.glossy[i][c]) + floor * largest)
+                << (queued ? "queued" : "interpolated") << " texel " << x << "," << y;
+          }
+          if (level > 0) {
+            EXPECT_EQ(got.origin[i], twin.origin[i]) << "texel " << x << "," << y;
+            EXPECT_EQ(got.exact[i], twin.exact[i]) << "texel " << x << "," << y;
+          }
+        }
+      EXPECT_EQ(skyTexels, head.sky);
+      std::printf(
+          "coarsest %u level %u: %u queued, %u interpolated, %u reused, %u sky, %zu decisions "
+          "differ\n",
+          coarsest, level, head.shaded, head.interpolated, head.reused, head.sky, disagree);
+      EXPECT_LE(disagree, texels / 100);
+      if (level > 0) interpolatedAbove += head.interpolated;
+      if (level == 0) {
+        interpolatedAtZero = head.interpolated;
+        queuedAtZero = head.shaded;
+        sky = head.sky;
+      }
+    }
+    // The case must exercise all three outcomes at full resolution, and interpolation above it.
+    EXPECT_GT(interpolatedAbove, 0u);
+    EXPECT_GT(interpolatedAtZero, 0u);
+    EXPECT_GT(queuedAtZero, 0u);
+    EXPECT_GT(sky, 0u);
+    // The counts the host reads back add up: every surface pixel's light came from one level.
+    uint32_t fromLevels = 0;
+    for (uint32_t n : gpu.counts.pixelsFrom) fromLevels += n;
+    EXPECT_EQ(fromLevels + gpu.counts.skyPixels, kWidth * kHeight);
+    EXPECT_EQ(gpu.counts.shaded[0], gpu.heads[0].shaded);
+    // No pixel is shaded twice: the queues hold fewer texels than there are surface pixels.
+    uint32_t shaded = 0;
+    for (uint32_t n : gpu.counts.shaded) shaded += n;
+    EXPECT_LT(shaded, kWidth * kHeight - gpu.counts.skyPixels);
+  }
+}
+
+// Coarsest level 0: every surface pixel is queued at level 0 and shaded by the same code as the
+// full-rate pass, so the images are identical bit for bit.
+TEST_F(AdaptiveShadingTest, CoarsestLevelZeroIsFullShading) {
+  gi::AdaptiveSettings settings;
+  settings.coarsestLevel = 0;
+  const Run adaptive = run(settings);
+  engine::Buffer buffer(ctx(), vsgls_.size() * sizeof(gpu::Vsgl),
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload);
+  buffer.upload(ctx(), std::span<const gpu::Vsgl>(vsgls_));
+  gi::Ism ism(ctx(), {32, 1u << 12, 256}, uint32_t(vsgls_.size()));
+  gi::VsglShade shade(ctx());
+  gi::IndirectImages out = gi::createIndirectImages(ctx(), kWidth, kHeight);
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    shade.record(cmd, *gbuffer_, view_,
+                 {&buffer, uint32_t(vsgls_.size()), VSGL_SHADE_GLOSSY, &ism.atlas(), ism.params()},
+                 out);
+  });
+  const std::vector<glm::vec4> d = out.diffuse.readbackRgba32f(ctx());
+  const std::vector<glm::vec4> g = out.glossy.readbackRgba32f(ctx());
+  size_t lit = 0;
+  for (size_t i = 0; i < d.size(); ++i) {
+    EXPECT_EQ(glm::dvec3(d[i]), adaptive.levels[0].diffuse[i]) << i;
+    EXPECT_EQ(glm::dvec3(g[i]), adaptive.levels[0].glossy[i]) << i;
+    lit += d[i].g > 0.0f;
+  }
+  EXPECT_GT(lit, d.size() / 2);
+  EXPECT_EQ(adaptive.heads[0].shaded + adaptive.heads[0].sky, kWidth * kHeight);
+}
+
+}  // namespace
