@@ -128,6 +128,7 @@ struct IndirectLighting::Impl {
   std::optional<engine::SceneGpu> scene;
   engine::Bounds bounds;
   float maxReflectance = 1.0f;  // SceneGeometry::maxReflectance
+  bool canOcclude = true;       // SceneGeometry::canOcclude
   FramePlan plan;               // of the last recorded frame
   engine::Rasterizer rasterizer;
   engine::GBufferResolve resolve;
@@ -151,13 +152,19 @@ namespace {
 
 // The effect planner (docs/integration.md, "The effect planner"): which passes this frame needs.
 // Each decision leaves out only work whose result is exactly zero or never read.
-FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance) {
+FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance, bool canOcclude) {
   FramePlan plan;
   plan.visibility = s.ismEnabled;
   plan.glossy = s.glossy;
   plan.adaptive = s.adaptive.enabled;
   plan.skySkipped = s.planner.skipSky && !plan.adaptive;  // adaptive shading never queues sky
-  if (!s.ismEnabled) plan.reasons.push_back("ism: off in the settings: no ISM build or test");
+  if (!s.ismEnabled) {
+    plan.reasons.push_back("ism: off in the settings: no ISM build or test");
+  } else if (s.planner.skipWithoutOccluders && !canOcclude) {
+    plan.visibility = false;
+    plan.reasons.push_back(
+        "ism: nothing can occlude (SceneGeometry.canOcclude = false): no ISM build or test");
+  }
   if (!s.glossy) plan.reasons.push_back("glossy: off in the settings: no glossy shading");
   if (plan.skySkipped)
     plan.reasons.push_back("sky: subgroups that see only sky skip the VSGL loop");
@@ -211,7 +218,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
   const uint32_t rule = static_cast<uint32_t>(settings.rule);
 
-  plan = planFrame(settings, in.light, maxReflectance);
+  plan = planFrame(settings, in.light, maxReflectance, canOcclude);
 
   ctx.recordDeferredSetup(cmd);
   profiler.beginFrame(cmd);
@@ -257,7 +264,7 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
     brsmPdf->record(cmd, attributes, rsmView, importance->vsgls(), settings.brsm, mips, &profiler);
   const engine::Buffer* vsgls = &recordVsgls(cmd, rsmView, rule);
   // The maps are built for the shading's visibility or for the debug view, whichever asks.
-  if (settings.ismEnabled || settings.debugVsgl >= 0) {
+  if (plan.visibility || settings.debugVsgl >= 0) {
     if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
     ismPointsStale = false;
     ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
@@ -368,6 +375,7 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
   impl_->ismPointsStale = true;
   impl_->bounds = {s.boundsMin, s.boundsMax};
   impl_->maxReflectance = s.maxReflectance;
+  impl_->canOcclude = s.canOcclude;
   return {};
 }
 

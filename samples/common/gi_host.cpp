@@ -45,6 +45,22 @@ float maxReflectance(const engine::Scene& scene) {
   return std::min(bound, 1.0f);
 }
 
+bool canOcclude(const engine::Scene& scene) {
+  if (scene.triangleCount() > kOccluderTestTriangles) return true;
+  const engine::Bounds b = scene.bounds();
+  const float tolerance = 1e-5f * glm::length(b.max - b.min);
+  for (uint32_t t = 0; t < scene.triangleCount(); ++t) {
+    const glm::vec3 p0 = scene.positions[scene.indices[3 * t]];
+    const glm::vec3 n = glm::cross(scene.positions[scene.indices[3 * t + 1]] - p0,
+                                   scene.positions[scene.indices[3 * t + 2]] - p0);
+    const float length = glm::length(n);
+    if (!(length > 0.0f)) continue;  // a degenerate triangle blocks nothing
+    for (const glm::vec3& p : scene.positions)
+      if (glm::dot(n, p - p0) < -tolerance * length) return true;  // a vertex behind the plane
+  }
+  return false;
+}
+
 gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::Scene& scene) {
   gi::SceneGeometry geometry;
   geometry.vertices = gpuScene.vertices.handle();
@@ -63,6 +79,7 @@ gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::
   geometry.boundsMin = bounds.min;
   geometry.boundsMax = bounds.max;
   geometry.maxReflectance = maxReflectance(scene);
+  geometry.canOcclude = canOcclude(scene);
   return geometry;
 }
 

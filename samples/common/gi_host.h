@@ -29,6 +29,14 @@ const engine::Light* bouncingLight(const engine::Scene& scene);
 float maxReflectance(const engine::Scene& scene);
 // `gpuScene`'s buffers and images as the API's plain handles, with `scene`'s bounds and
 // reflectance bound.
+// Whether any surface of `scene` can block light between two others
+// (SceneGeometry::canOcclude): false when every vertex lies on or in front of every triangle's
+// plane, within 1e-5 of the scene's size (the inside of a convex room). Scenes of more than
+// kOccluderTestTriangles triangles are not tested (the test costs triangles x vertices) and
+// count as occluding.
+constexpr uint32_t kOccluderTestTriangles = 8192;
+bool canOcclude(const engine::Scene& scene);
+
 gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::Scene& scene);
 
 // The module on `ctx`'s device for a width x height G-buffer, with `scene`'s geometry set.

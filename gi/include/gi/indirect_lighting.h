@@ -90,6 +90,10 @@ struct SceneGeometry {
   // albedo or specular F0, textures included, in [0, 1]. 0 means nothing can bounce light, and
   // the effect planner then skips every pass (FramePlan). A host that does not know leaves 1.
   float maxReflectance = 1.0f;
+  // Whether any surface can block light between two others. false, e.g. for the inside of a
+  // convex room, where every vertex lies on or in front of every triangle's plane: the
+  // effect planner then skips the ISMs (FramePlan). A host that does not know leaves true.
+  bool canOcclude = true;
 };
 
 // The light that bounces: a spot or a directional light in KHR_lights_punctual units.

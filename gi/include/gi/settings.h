@@ -91,14 +91,18 @@ struct IsmSettings {
 };
 
 // The effect planner's decisions (docs/integration.md, "The effect planner"), each of which can
-// be turned off for comparison. A decision only leaves out work whose result is exactly zero or
-// never read, so the images are the same with it on or off.
+// be turned off for comparison. A decision leaves out work whose result is exactly zero or never
+// read, so the images are the same with it on or off; skipWithoutOccluders says how it differs.
 struct PlannerSettings {
   // No light can bounce (light intensity x colour = 0, or SceneGeometry::maxReflectance = 0):
   // skip every pass and write black outputs.
   bool skipWithoutBounce = true;
   // Subgroups of pixels that all see the sky (depth 1) skip the VSGL loop.
   bool skipSky = true;
+  // Nothing can occlude (SceneGeometry::canOcclude = false): no ISM build or test. Unlike the
+  // others this decision changes the image: it removes the ISMs' own errors (light lost to
+  // their holes and biases), where the exact visibility is 1.
+  bool skipWithoutOccluders = true;
 };
 
 // Adaptive shading (docs/techniques/adaptive-shading.md, after [S4] section 3.2): the VSGL sum
