@@ -90,25 +90,35 @@ class IndirectLightingApiTest : public testing_gpu::GpuTest {
     return image.readbackRgba32f(ctx());
   }
 
-  // One frame of `settings` on the fixture's G-buffer and scene, its outputs read back; the
-  // instance stays for its plan and counts (null, with a failure, when it cannot be created).
+  // One frame of `settings` with `in` and the scene geometry `g` (the fixture's by default),
+  // its outputs read back; the instance stays for its plan, times and counts (null, with a
+  // failure, when it cannot be created). The G-buffer returns in the layout the module reports.
   struct Frame {
     std::unique_ptr<gi::IndirectLighting> lighting;
     std::vector<glm::vec4> diffuse, glossy;
+    size_t passes() const { return lighting->lastFrameTimes().size(); }
+    const gi::FramePlan& plan() const { return lighting->lastPlan(); }
   };
-  Frame shadeFrame(const gi::Settings& settings) {
+  Frame shadeFrame(const gi::Settings& settings, const gi::FrameInput& in,
+                   const gi::SceneGeometry& g) {
     Frame f;
     gi::Status status;
     f.lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
     EXPECT_TRUE(f.lighting) << status.message;
     if (!f.lighting) return f;
-    EXPECT_TRUE(f.lighting->setScene(geometry()));
+    EXPECT_TRUE(f.lighting->setScene(g));
     gi::FrameOutput out;
     ctx().submitAndWait(
-        [&](VkCommandBuffer cmd) { EXPECT_TRUE(f.lighting->record(cmd, input(), &out)); });
+        [&](VkCommandBuffer cmd) { EXPECT_TRUE(f.lighting->record(cmd, in, &out)); });
+    for (engine::Image* image :
+         {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+      image->setLayout(out.gbufferLayout);
     f.diffuse = readOutput(out.indirectDiffuse);
     f.glossy = readOutput(out.indirectGlossy);
     return f;
+  }
+  Frame shadeFrame(const gi::Settings& settings) {
+    return shadeFrame(settings, input(), geometry());
   }
 
   engine::Scene scene_;
@@ -238,14 +248,6 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   EXPECT_EQ(lighting->settings().rsmSize, 64u);
 }
 
-// One frame's outputs and pass count through the public API, with `settings`, `in` and the scene
-// geometry `g` (the G-buffer returns to GENERAL, which the fixture then records).
-struct PlannedFrame {
-  std::vector<glm::vec4> diffuse, glossy;
-  size_t passes = 0;
-  gi::FramePlan plan;
-};
-
 // The effect planner (issue 9): with no light that can bounce, because the light has no power or
 // because no surface reflects, it skips every pass. The outputs are the same as without the
 // planner, where every pass runs and yields exactly 0 (zero flux makes zero VSGL power makes
@@ -254,32 +256,23 @@ TEST_F(IndirectLightingApiTest, PlannerSkipsEveryPassWhenNothingCanBounce) {
   auto run = [&](bool planner, const gi::FrameInput& in, const gi::SceneGeometry& g) {
     gi::Settings settings = smallSettings();
     settings.planner.skipWithoutBounce = planner;
-    gi::Status status;
-    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
-    EXPECT_TRUE(lighting) << status.message;
-    EXPECT_TRUE(lighting->setScene(g));
-    gi::FrameOutput out;
-    ctx().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, in, &out)); });
-    for (engine::Image* image :
-         {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
-      image->setLayout(out.gbufferLayout);
-    return PlannedFrame{readOutput(out.indirectDiffuse), readOutput(out.indirectGlossy),
-                        lighting->lastFrameTimes().size(), lighting->lastPlan()};
+    return shadeFrame(settings, in, g);
   };
+
   auto expectSame = [&](const gi::FrameInput& in, const gi::SceneGeometry& g, const char* why) {
     SCOPED_TRACE(why);
-    const PlannedFrame on = run(true, in, g), off = run(false, in, g);
-    EXPECT_FALSE(on.plan.bounce);
-    ASSERT_FALSE(on.plan.reasons.empty());
-    EXPECT_NE(on.plan.reasons.back().find(why), std::string::npos) << on.plan.reasons.back();
-    EXPECT_TRUE(off.plan.bounce);
-    EXPECT_LT(on.passes, off.passes);
+    const Frame on = run(true, in, g), off = run(false, in, g);
+    EXPECT_FALSE(on.plan().bounce);
+    ASSERT_FALSE(on.plan().reasons.empty());
+    EXPECT_NE(on.plan().reasons.back().find(why), std::string::npos) << on.plan().reasons.back();
+    EXPECT_TRUE(off.plan().bounce);
+    EXPECT_LT(on.passes(), off.passes());
     for (size_t i = 0; i < on.diffuse.size(); ++i) {
       EXPECT_EQ(on.diffuse[i], off.diffuse[i]) << "pixel " << i;
       EXPECT_EQ(on.glossy[i], off.glossy[i]) << "pixel " << i;
       EXPECT_EQ(glm::vec3(on.diffuse[i]) + glm::vec3(on.glossy[i]), glm::vec3(0.0f));
     }
-    std::printf("%s: %zu passes with the planner, %zu without\n", why, on.passes, off.passes);
+    std::printf("%s: %zu passes with the planner, %zu without\n", why, on.passes(), off.passes());
   };
   gi::FrameInput dark = input();
   dark.light.intensity = 0.0f;
@@ -370,25 +363,15 @@ TEST_F(IndirectLightingApiTest, PlannerSkipsTheIsmsWhenNothingCanOcclude) {
     gi::Settings settings = smallSettings();
     settings.planner.skipWithoutOccluders = planner;
     settings.ismEnabled = ism;
-    gi::Status status;
-    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
-    EXPECT_TRUE(lighting) << status.message;
-    EXPECT_TRUE(lighting->setScene(samples::sceneGeometry(roomGpu, room)));
-    gi::FrameOutput out;
-    ctx().submitAndWait(
-        [&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, input(), &out)); });
-    for (engine::Image* image :
-         {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
-      image->setLayout(out.gbufferLayout);
-    return PlannedFrame{readOutput(out.indirectDiffuse), readOutput(out.indirectGlossy),
-                        lighting->lastFrameTimes().size(), lighting->lastPlan()};
+    return shadeFrame(settings, input(), samples::sceneGeometry(roomGpu, room));
   };
-  const PlannedFrame on = run(true, true), off = run(false, true), exact = run(false, false);
-  EXPECT_FALSE(on.plan.visibility);
-  ASSERT_FALSE(on.plan.reasons.empty());
-  EXPECT_NE(on.plan.reasons.front().find("nothing can occlude"), std::string::npos);
-  EXPECT_TRUE(off.plan.visibility);
-  EXPECT_LT(on.passes, off.passes);
+
+  const Frame on = run(true, true), off = run(false, true), exact = run(false, false);
+  EXPECT_FALSE(on.plan().visibility);
+  ASSERT_FALSE(on.plan().reasons.empty());
+  EXPECT_NE(on.plan().reasons.front().find("nothing can occlude"), std::string::npos);
+  EXPECT_TRUE(off.plan().visibility);
+  EXPECT_LT(on.passes(), off.passes());
   std::vector<glm::dvec3> withIsm, without;
   for (size_t i = 0; i < on.diffuse.size(); ++i) {
     EXPECT_EQ(on.diffuse[i], exact.diffuse[i]) << "pixel " << i;
@@ -400,7 +383,7 @@ TEST_F(IndirectLightingApiTest, PlannerSkipsTheIsmsWhenNothingCanOcclude) {
   std::printf(
       "nothing can occlude: %zu timed passes with the planner, %zu without; the ISMs "
       "change the image by %.3g of its mean (RMS)\n",
-      on.passes, off.passes, e.referenceMean > 0.0 ? e.rmse / e.referenceMean : 0.0);
+      on.passes(), off.passes(), e.referenceMean > 0.0 ? e.rmse / e.referenceMean : 0.0);
 }
 
 // Adaptive shading through the public API, against full-rate shading of the same frame (the
