@@ -241,6 +241,10 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   out.indirectDiffuse = {indirect.diffuse.handle(), indirect.diffuse.view(),
                          indirect.diffuse.layout()};
   out.indirectGlossy = {indirect.glossy.handle(), indirect.glossy.view(), indirect.glossy.layout()};
+  if (vsgls && plan.adaptive) {
+    engine::Image& levels = adaptive.levelMap();
+    out.shadingLevels = {levels.handle(), levels.view(), levels.layout()};
+  }
   if (vsgls && settings.debugVsgl >= 0)
     out.debugVisibility = {debugVisibility->handle(), debugVisibility->view(),
                            debugVisibility->layout()};

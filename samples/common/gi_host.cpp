@@ -165,17 +165,14 @@ std::vector<gpu::Vsgl> readVsgls(engine::Context& ctx, const gi::FrameOutput& ou
   return buffer.readbackAs<gpu::Vsgl>(ctx);
 }
 
-std::vector<float> readVisibility(engine::Context& ctx, const gi::FrameOutput& output,
-                                  uint32_t width, uint32_t height) {
-  if (!output.debugVisibility.image)
-    throw engine::Error("internal: the module wrote no debug visibility image");
+std::vector<float> readR32f(engine::Context& ctx, const gi::ImageRef& ref, uint32_t width,
+                            uint32_t height, const char* what) {
+  if (!ref.image) throw engine::Error(std::string("internal: the module wrote no ") + what);
   engine::ImageDesc desc;
   desc.width = width;
   desc.height = height;
   desc.format = VK_FORMAT_R32_SFLOAT;
-  engine::Image image =
-      engine::Image::borrow(output.debugVisibility.image, output.debugVisibility.view, desc,
-                            output.debugVisibility.layout);
+  engine::Image image = engine::Image::borrow(ref.image, ref.view, desc, ref.layout);
   std::vector<std::byte> bytes = image.readback(ctx);
   std::vector<float> values(bytes.size() / sizeof(float));
   std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));

@@ -60,8 +60,10 @@ Indirect readIndirect(engine::Context& ctx, const gi::FrameOutput& output, uint3
 // Diffuse + glossy per pixel, in double (what the benchmark and the flicker captures score).
 std::vector<glm::dvec3> indirectSum(const Indirect& indirect);
 std::vector<gpu::Vsgl> readVsgls(engine::Context& ctx, const gi::FrameOutput& output);
-std::vector<float> readVisibility(engine::Context& ctx, const gi::FrameOutput& output,
-                                  uint32_t width, uint32_t height);
+// A single-channel R32_SFLOAT output of the module (FrameOutput::debugVisibility or
+// shadingLevels), read back; `what` names it in the error when the module wrote none.
+std::vector<float> readR32f(engine::Context& ctx, const gi::ImageRef& ref, uint32_t width,
+                            uint32_t height, const char* what);
 
 void addInto(engine::ImageRgba32f& sum, const engine::ImageRgba32f& term);
 

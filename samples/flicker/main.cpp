@@ -68,7 +68,8 @@ const char* usage() {
          "  --block N          the image flicker compares N x N pixel block means, 1..64 (1 =\n"
          "                     per pixel; default 8)\n"
          "  --methods LIST     comma-separated: tok15, modified, kmeans-2d, kmeans-3d; a filtered\n"
-         "                     method takes a kernel scale as -kK (modified-k4) (default\n"
+         "                     method takes a kernel scale as -kK (modified-k4); modified-full\n"
+         "                     shades every pixel (adaptive shading off) (default\n"
          "                     tok15,modified,modified-k4,kmeans-2d,kmeans-3d)\n"
          "  --pdf KIND         brsm (view-dependent) or flux (default brsm)\n"
          "  --reference KIND   vpl (brute-force VPL gather, exact visibility) or path (path\n"
@@ -135,6 +136,10 @@ gi::Settings methodSettings(const std::string& word, const Options& o) {
     method = word.substr(0, k);
     s.kernelScale = samples::parseFloat("--methods", word.substr(k + 2), 1.0f, float(o.count));
   }
+  if (method == "modified-full") {  // every pixel shaded: adaptive shading's own flicker
+    method = "modified";
+    s.adaptive.enabled = false;
+  }
   if (method == "tok15")
     s.rule = gi::KernelRule::Tok15;
   else if (method == "kmeans-2d")
@@ -143,8 +148,8 @@ gi::Settings methodSettings(const std::string& word, const Options& o) {
     s.method = gi::VsglMethod::KmeansWorld;
   else if (method != "modified")
     throw engine::Error("--methods: '" + word +
-                        "' is not one of tok15, modified (each with an optional -kK), kmeans-2d, "
-                        "kmeans-3d");
+                        "' is not one of tok15, modified (each with an optional -kK), modified-full, "
+                        "kmeans-2d, kmeans-3d");
   if (std::string bad = gi::validateSettings(s); !bad.empty()) throw engine::Error(bad);
   return s;
 }

@@ -88,6 +88,20 @@ std::vector<uint8_t> greyscale(std::span<const float> values) {
   return out;
 }
 
+std::vector<uint8_t> levelColours(std::span<const uint8_t> rgba8, std::span<const float> levels) {
+  static constexpr uint8_t kColours[4][3] = {
+      {230, 40, 40}, {235, 200, 40}, {60, 190, 80}, {60, 110, 230}};
+  std::vector<uint8_t> out(rgba8.begin(), rgba8.end());
+  for (size_t i = 0; i < levels.size(); ++i) {
+    if (levels[i] < 0.0f) continue;  // sky
+    const uint8_t* c = kColours[std::min(size_t(levels[i]), size_t{3})];
+    // Half the tint, half the frame's brightness: the level over the picture's structure.
+    const int grey = (rgba8[4 * i] + rgba8[4 * i + 1] + rgba8[4 * i + 2]) / 3;
+    for (int k = 0; k < 3; ++k) out[4 * i + k] = uint8_t((c[k] + grey) / 2);
+  }
+  return out;
+}
+
 uint32_t brightestVsgl(std::span<const gpu::Vsgl> vsgls) {
   uint32_t best = 0;
   float bestPower = -1.0f;

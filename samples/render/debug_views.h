@@ -20,6 +20,10 @@ std::vector<uint8_t> drawVsglLobes(std::span<const uint8_t> rgba8, int width, in
 // A visibility image (R32F in [0, 1]) as grey RGBA8, sky and unlit pixels black.
 std::vector<uint8_t> greyscale(std::span<const float> values);
 
+// Adaptive shading's level map (FrameOutput::shadingLevels) over a grey copy of `rgba8`: pixels
+// shaded at full rate red, light from level 1 yellow, 2 green, 3 blue; the sky left as it is.
+std::vector<uint8_t> levelColours(std::span<const uint8_t> rgba8, std::span<const float> levels);
+
 // Index of the VSGL with the largest total power (luminance weight of both lobes).
 uint32_t brightestVsgl(std::span<const gpu::Vsgl> vsgls);
 

@@ -146,6 +146,16 @@ int run(const render::Options& o) {
     engine::writePng(
         base + "_vsgls.png", image.width, image.height,
         render::drawVsglLobes(frameRgba, image.width, image.height, vsgls, view.viewProj));
+    if (output.shadingLevels.image) {
+      engine::writePng(
+          base + "_levels.png", image.width, image.height,
+          render::levelColours(frameRgba, samples::readR32f(ctx, output.shadingLevels, o.width,
+                                                            o.height, "shading-level map")));
+      std::printf(
+          "wrote %s_levels.png (adaptive shading: the level each pixel's light was "
+          "shaded at)\n",
+          base.c_str());
+    }
     if (o.gi.ismEnabled && output.vsglCount > 0) {
       // One more frame with the chosen VSGL's visibility written out.
       const uint32_t k = o.debugVsgl >= 0 ? uint32_t(o.debugVsgl) : render::brightestVsgl(vsgls);
@@ -155,7 +165,8 @@ int run(const render::Options& o) {
       ctx.submitAndWait(
           [&](VkCommandBuffer cmd) { samples::check(indirect->record(cmd, input, &output)); });
       engine::writePng(base + "_visibility.png", image.width, image.height,
-                       render::greyscale(samples::readVisibility(ctx, output, o.width, o.height)));
+                       render::greyscale(samples::readR32f(ctx, output.debugVisibility, o.width,
+                                                           o.height, "debug visibility")));
       std::printf("wrote %s_visibility.png (ISM visibility of VSGL %u)\n", base.c_str(), k);
     }
   }

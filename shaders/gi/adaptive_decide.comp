@@ -35,6 +35,8 @@ layout(std430, binding = 8) buffer Queue {
   AdaptiveQueueHeader head;
   uint entries[];
 };
+// Level 0 only: the level each pixel's light was shaded at, -1 for the sky (a debug view).
+layout(binding = 9, r32f) uniform writeonly image2D outLevels;
 layout(push_constant) uniform Push { AdaptiveDecidePush pc; };
 
 // What the tests read of a representative pixel, its position relative to the eye.
@@ -86,6 +88,7 @@ void main() {
   if (s.sky) {
     imageStore(outDiffuse, store, vec4(0.0, 0.0, 0.0, alpha));
     imageStore(outGlossy, store, vec4(0.0, 0.0, 0.0, alpha));
+    if (pc.level == 0u) imageStore(outLevels, store, vec4(-1.0));
     atomicAdd(head.sky, 1u);
     return;
   }
@@ -144,6 +147,7 @@ void main() {
     uint index = atomicAdd(head.shaded, 1u);
     entries[index] = texel.x | (texel.y << ADAPTIVE_PACK_SHIFT);
     if (index % ADAPTIVE_QUEUE_GROUP == 0u) atomicAdd(head.groupsX, 1u);
+    if (pc.level == 0u) imageStore(outLevels, store, vec4(0.0));
     return;
   }
   if (reuse)
@@ -152,6 +156,7 @@ void main() {
     atomicAdd(head.interpolated, 1u);
   if (pc.level == 0u) {
     atomicAdd(head.fromLevel[min(origin, ADAPTIVE_MAX_LEVEL)], 1u);
+    imageStore(outLevels, store, vec4(float(origin)));
     imageStore(outDiffuse, store, vec4(diffuse * s.albedo, 1.0));
     imageStore(outGlossy, store, vec4(glossy, 1.0));
   } else {

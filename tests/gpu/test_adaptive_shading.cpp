@@ -5,6 +5,7 @@
 // at 0 the pass must reproduce full-rate shading bit for bit.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <set>
 
 #include "engine/builtin_scenes.h"
@@ -59,6 +60,7 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
     std::vector<std::set<uint32_t>> queues;  // packed texels per level
     std::vector<gpu::AdaptiveQueueHeader> heads;
     gi::ShadingCounts counts;
+    std::vector<float> levelMap;  // per pixel: the level its light was shaded at, -1 sky
   };
 
   Run run(const gi::AdaptiveSettings& settings) {
@@ -75,6 +77,9 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
         [&](VkCommandBuffer cmd) { pass.record(cmd, *gbuffer_, view_, in, settings, shade, out); });
     Run r;
     r.counts = pass.lastCounts();
+    const std::vector<std::byte> map = pass.levelMap().readback(ctx());
+    r.levelMap.resize(map.size() / sizeof(float));
+    std::memcpy(r.levelMap.data(), map.data(), map.size());
     for (uint32_t level = 0; level <= settings.coarsestLevel; ++level) {
       gi::IndirectImages& images = level == 0 ? out : pass.levelImages(level);
       const std::vector<glm::vec4> d = images.diffuse.readbackRgba32f(ctx());
@@ -172,6 +177,7 @@ TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
             ++skyTexels;
             EXPECT_FALSE(queued) << "sky texel " << x << "," << y << " queued";
             EXPECT_EQ(got.diffuse[i], glm::dvec3(0.0));
+            if (level == 0) EXPECT_EQ(gpu.levelMap[i], -1.0f) << "level map at " << x << "," << y;
             continue;
           }
           if (queued != bool(twin.queued[i])) {
@@ -190,6 +196,8 @@ TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
           if (level > 0) {
             EXPECT_EQ(got.origin[i], twin.origin[i]) << "texel " << x << "," << y;
             EXPECT_EQ(got.exact[i], twin.exact[i]) << "texel " << x << "," << y;
+          } else {
+            EXPECT_EQ(gpu.levelMap[i], float(twin.origin[i])) << "level map at " << x << "," << y;
           }
         }
       EXPECT_EQ(skyTexels, head.sky);

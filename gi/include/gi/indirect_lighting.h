@@ -130,6 +130,9 @@ struct FrameOutput {
   // R32_SFLOAT visibility of VSGL Settings::debugVsgl from each pixel (VK_NULL_HANDLE when
   // debugVsgl < 0).
   ImageRef debugVisibility;
+  // R32_SFLOAT level (0..3) at which each pixel's light was shaded by adaptive shading, -1 for
+  // the sky, for debug views (VK_NULL_HANDLE when adaptive shading is off).
+  ImageRef shadingLevels;
   // The VSGL records of this frame (gpu::Vsgl, shaders/shared/vsgl.h), for debug views.
   VkBuffer vsgls = VK_NULL_HANDLE;
   uint32_t vsglCount = 0;

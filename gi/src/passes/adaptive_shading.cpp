@@ -46,7 +46,7 @@ AdaptiveShading::AdaptiveShading(engine::Context& ctx, uint32_t width, uint32_t 
                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
               uint32_t(sizeof(gpu::AdaptiveDecidePush))),
       counts_(ctx, sizeof(gpu::AdaptiveQueueHeader) * (ADAPTIVE_MAX_LEVEL + 1),
               VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::Readback) {
@@ -56,6 +56,13 @@ AdaptiveShading::AdaptiveShading(engine::Context& ctx, uint32_t width, uint32_t 
   for (uint32_t level = 0; level <= ADAPTIVE_MAX_LEVEL; ++level)
     queues_.push_back(queueBuffer(ctx, width, height, level));
   std::memset(counts_.mapped(), 0, counts_.size());
+  engine::ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = VK_FORMAT_R32_SFLOAT;
+  desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  levelMap_ = engine::Image(ctx, desc);
+  engine::initialLayout(ctx, levelMap_, VK_IMAGE_LAYOUT_GENERAL);
 }
 
 void AdaptiveShading::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
@@ -84,7 +91,7 @@ void AdaptiveShading::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
            Binding::storageImage(gbuffer.diffuse), Binding::storageImage(gbuffer.specular),
            Binding::storageImage(parent.diffuse), Binding::storageImage(parent.glossy),
            Binding::storageImage(target.diffuse), Binding::storageImage(target.glossy),
-           Binding::storage(queues_[level])},
+           Binding::storage(queues_[level]), Binding::storageImage(levelMap_)},
           push, engine::groupCount(gpu::adaptiveLevelSize(width_, level), ADAPTIVE_GROUP_X),
           engine::groupCount(gpu::adaptiveLevelSize(height_, level), ADAPTIVE_GROUP_Y));
       engine::computeBarrier(cmd);

@@ -35,6 +35,9 @@ class AdaptiveShading {
   // light was shaded at) and the queues (head and texel entries) of the last frame.
   IndirectImages& levelImages(uint32_t level) { return levels_[level - 1]; }
   const engine::Buffer& queue(uint32_t level) const { return queues_[level]; }
+  // R32_SFLOAT, the G-buffer's size: the level each pixel's light was shaded at, -1 for the sky
+  // (FrameOutput::shadingLevels).
+  engine::Image& levelMap() { return levelMap_; }
 
  private:
   engine::Context* ctx_;
@@ -43,6 +46,7 @@ class AdaptiveShading {
   std::vector<IndirectImages> levels_;  // levels 1..ADAPTIVE_MAX_LEVEL
   std::vector<engine::Buffer> queues_;  // levels 0..ADAPTIVE_MAX_LEVEL
   engine::Buffer counts_;               // the queues' heads, copied for the host
+  engine::Image levelMap_;
 };
 
 // The push constants of one level's decision pass from the settings (shared with the CPU twin).
