@@ -38,7 +38,8 @@ for scene in $(tail -n +2 "$csv" | cut -d, -f1 | sort -u); do
   frame_plot=$(accuracy_plot "$scene" 5 0)
   generation_plot=$(accuracy_plot "$scene" 8 1)
 
-  # Passes: a table with one line per row (label, then one column per pass).
+  # Passes: a table with one line per row (label, then one column per pass). Adaptive shading
+  # times its levels inside the "vsgl shading" scope: such rows stack the levels, not the total.
   table="$work/${scene}_passes.dat"
   awk -F, -v s="$scene" '
     NR > 1 && $1 == s {
@@ -46,12 +47,16 @@ for scene in $(tail -n +2 "$csv" | cut -d, -f1 | sort -u); do
       if (!(row in seen)) { seen[row] = 1; rows[++n] = row }
       if (!($5 in known)) { known[$5] = 1; names[++m] = $5 }
       ms[row, $5] = $6
+      if ($5 ~ /^vsgl shading L/) levels[row] = 1
     }
     END {
       printf "row"; for (j = 1; j <= m; ++j) printf "\t\"%s\"", names[j]; printf "\n"
       for (i = 1; i <= n; ++i) {
         printf "\"%s\"", rows[i]
-        for (j = 1; j <= m; ++j) printf "\t%s", ((rows[i], names[j]) in ms) ? ms[rows[i], names[j]] : 0
+        for (j = 1; j <= m; ++j) {
+          total = names[j] == "vsgl shading" && (rows[i] in levels)
+          printf "\t%s", (!total && (rows[i], names[j]) in ms) ? ms[rows[i], names[j]] : 0
+        }
         printf "\n"
       }
     }' "$passes" > "$table"

@@ -131,8 +131,8 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--planner")  // every planner decision at once, for comparison
       o.gi.planner = parseChoice<gi::PlannerSettings>(
           arg, args.value(),
-          {{"on", gi::PlannerSettings{}}, {"off", gi::PlannerSettings{false, false}}});
-    else if (arg == "--adaptive")  // off, or the coarsest level of adaptive shading
+          {{"on", gi::PlannerSettings{}}, {"off", gi::PlannerSettings{false, false, false}}});
+    else if (arg == "--adaptive")
       o.gi.adaptive.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--adaptive-level")
       o.gi.adaptive.coarsestLevel = parseUint(arg, args.value(), 0, 3);

@@ -19,6 +19,8 @@
 
 layout(local_size_x = ADAPTIVE_GROUP_X, local_size_y = ADAPTIVE_GROUP_Y) in;
 
+const float kFltMax = 3.402823466e38;
+
 layout(binding = 0, r32f) uniform readonly image2D gDepth;
 layout(binding = 1, rg16_snorm) uniform readonly image2D gNormal;
 layout(binding = 2, rgba16f) uniform readonly image2D gDiffuse;
@@ -157,7 +159,10 @@ void main() {
   if (pc.level == 0u) {
     atomicAdd(head.fromLevel[min(origin, ADAPTIVE_MAX_LEVEL)], 1u);
     imageStore(outLevels, store, vec4(float(origin)));
-    imageStore(outDiffuse, store, vec4(diffuse * s.albedo, 1.0));
+    // A reused texel skipped the light test that a non-finite albedo fails: such an albedo
+    // reads as 0, as in the shading (vsgl_shade.comp; vsgl-math.md section 12, case 14).
+    vec3 albedo = mix(vec3(0.0), s.albedo, lessThanEqual(abs(s.albedo), vec3(kFltMax)));
+    imageStore(outDiffuse, store, vec4(diffuse * albedo, 1.0));
     imageStore(outGlossy, store, vec4(glossy, 1.0));
   } else {
     imageStore(outDiffuse, store, vec4(diffuse, float(origin)));

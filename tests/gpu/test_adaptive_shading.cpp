@@ -260,3 +260,53 @@ TEST_F(AdaptiveShadingTest, CoarsestLevelZeroIsFullShading) {
 }
 
 }  // namespace
+
+// vsgl-math.md section 12, case 14, through the pyramid: non-finite material channels at
+// representative pixels of every level (and at an odd pixel, which level 0 alone reads) must
+// not spread. Every test a NaN or Inf takes part in fails, so the texels around them are shaded
+// rather than interpolated, and the shading reads such channels as 0 (albedo, F0) or 1
+// (roughness). Every output is finite and non-negative, and a pixel with a NaN albedo gets no
+// diffuse light.
+TEST_F(AdaptiveShadingTest, NonFiniteMaterialStaysLocal) {
+  const std::vector<glm::uvec2> poisoned = {{16, 16}, {24, 12}, {29, 19}};
+  for (const glm::uvec2& p : poisoned) ASSERT_FALSE(decoded_.at(p.x, p.y).background());
+  std::vector<std::byte> diffuse = gbuffer_->diffuse.readback(ctx());
+  std::vector<std::byte> specular = gbuffer_->specular.readback(ctx());
+  auto half = [](std::vector<std::byte>& image, glm::uvec2 p, int channel) {
+    return reinterpret_cast<uint16_t*>(image.data()) + (size_t{p.y} * kWidth + p.x) * 4 + channel;
+  };
+  const uint16_t nan = 0x7E00, inf = 0x7C00;                          // binary16
+  for (int c = 0; c < 3; ++c) *half(diffuse, poisoned[0], c) = nan;   // albedo, levels 0-3
+  *half(diffuse, poisoned[1], 3) = nan;                               // roughness, levels 0-2
+  for (int c = 0; c < 3; ++c) *half(specular, poisoned[2], c) = inf;  // F0, level 0 only
+  gbuffer_->diffuse.upload(ctx(), diffuse.data(), diffuse.size());
+  gbuffer_->specular.upload(ctx(), specular.data(), specular.size());
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    engine::imageBarrier(cmd, gbuffer_->diffuse, VK_IMAGE_LAYOUT_GENERAL);
+    engine::imageBarrier(cmd, gbuffer_->specular, VK_IMAGE_LAYOUT_GENERAL);
+  });
+  gi::AdaptiveSettings settings;
+  settings.coarsestLevel = 3;
+  settings.lightTolerance = 0.5f;  // as in LevelsMatchTheTwin: interpolation happens
+  const Run r = run(settings);
+  EXPECT_GT(r.heads[0].interpolated, 0u);
+  const gi::AdaptiveLevel& out = r.levels[0];
+  for (size_t i = 0; i < out.diffuse.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_TRUE(std::isfinite(out.diffuse[i][c]) && std::isfinite(out.glossy[i][c])) << i;
+      EXPECT_GE(out.diffuse[i][c], 0.0);
+      EXPECT_GE(out.glossy[i][c], 0.0);
+    }
+  EXPECT_EQ(out.diffuse[out.index(poisoned[0])], glm::dvec3(0.0));
+  // The NaN-albedo pixel reuses light shaded at a coarser level (its light test fails): the
+  // path where the decision itself must read the albedo as 0.
+  EXPECT_GT(r.levelMap[out.index(poisoned[0])], 0.0f);
+  // Each poisoned pixel's light was shaded at that very pixel: it is a representative of the
+  // level its light came from (no interpolation through the non-finite channel).
+  for (const glm::uvec2& p : poisoned) {
+    const float level = r.levelMap[out.index(p)];
+    ASSERT_GE(level, 0.0f);
+    const uint32_t step = 1u << uint32_t(level);
+    EXPECT_TRUE(p.x % step == 0 && p.y % step == 0) << p.x << "," << p.y << " from level " << level;
+  }
+}

@@ -1,6 +1,7 @@
 #include "reference/adaptive_reference.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "reference/rsm_reference.h"
@@ -117,7 +118,11 @@ AdaptiveLevel adaptiveLevelReference(const engine::GBufferData& g,
         out.queued[i] = 1;
       }
       out.exact[i] = !interpolate;
-      out.diffuse[i] = level == 0 ? diffuse * s.albedo : diffuse;
+      // A non-finite albedo reads as 0 at level 0, as in the shading.
+      glm::dvec3 albedo = s.albedo;
+      for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(albedo[c])) albedo[c] = 0.0;
+      out.diffuse[i] = level == 0 ? diffuse * albedo : diffuse;
       out.glossy[i] = glossy;
       out.origin[i] = origin;
     }
