@@ -93,4 +93,20 @@ DirectFrame GpuTest::renderDirect(const engine::Scene& scene, const engine::View
   return out;
 }
 
+void GpuTest::pokeMaterials(engine::GBuffer& gbuffer, const std::vector<MaterialPoke>& pokes) {
+  std::vector<std::byte> diffuse = gbuffer.diffuse.readback(ctx());
+  std::vector<std::byte> specular = gbuffer.specular.readback(ctx());
+  for (const MaterialPoke& p : pokes) {
+    auto* texel = reinterpret_cast<uint16_t*>((p.specular ? specular : diffuse).data()) +
+                  (size_t{p.pixel.y} * gbuffer.width + p.pixel.x) * 4;
+    for (int c = p.first; c <= p.last; ++c) texel[c] = p.bits;
+  }
+  gbuffer.diffuse.upload(ctx(), diffuse.data(), diffuse.size());
+  gbuffer.specular.upload(ctx(), specular.data(), specular.size());
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    engine::imageBarrier(cmd, gbuffer.diffuse, VK_IMAGE_LAYOUT_GENERAL);
+    engine::imageBarrier(cmd, gbuffer.specular, VK_IMAGE_LAYOUT_GENERAL);
+  });
+}
+
 }  // namespace testing_gpu

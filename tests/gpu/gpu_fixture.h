@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "engine/direct_light.h"
 #include "engine/gbuffer.h"
@@ -20,6 +21,17 @@ struct DirectFrame {
   engine::GBufferData gbuffer;
   std::vector<glm::vec4> radiance;  // RGBA32F, row 0 at the top
 };
+
+// One channel range of one pixel of a G-buffer material image set to a binary16 value: the
+// non-finite material tests (vsgl-math.md section 12, case 14).
+struct MaterialPoke {
+  bool specular;  // the specular image (rgb F0) instead of the diffuse one (rgb albedo, a
+                  // roughness)
+  glm::uvec2 pixel;
+  int first, last;  // channels first..last
+  uint16_t bits;    // binary16, e.g. kHalfNan
+};
+constexpr uint16_t kHalfNan = 0x7E00, kHalfInf = 0x7C00;
 
 class GpuTest : public ::testing::Test {
  protected:
@@ -36,6 +48,8 @@ class GpuTest : public ::testing::Test {
   // `scene` rasterised, resolved and lit by the direct-light pass (blocking).
   DirectFrame renderDirect(const engine::Scene& scene, const engine::View& view,
                            const engine::DirectLightSettings& settings);
+  // Rewrites material channels of `gbuffer` in place (blocking); its images end in GENERAL.
+  void pokeMaterials(engine::GBuffer& gbuffer, const std::vector<MaterialPoke>& pokes);
 
  private:
   uint32_t messagesBefore_ = 0;

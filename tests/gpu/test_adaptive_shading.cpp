@@ -270,21 +270,11 @@ TEST_F(AdaptiveShadingTest, CoarsestLevelZeroIsFullShading) {
 TEST_F(AdaptiveShadingTest, NonFiniteMaterialStaysLocal) {
   const std::vector<glm::uvec2> poisoned = {{16, 16}, {24, 12}, {29, 19}};
   for (const glm::uvec2& p : poisoned) ASSERT_FALSE(decoded_.at(p.x, p.y).background());
-  std::vector<std::byte> diffuse = gbuffer_->diffuse.readback(ctx());
-  std::vector<std::byte> specular = gbuffer_->specular.readback(ctx());
-  auto half = [](std::vector<std::byte>& image, glm::uvec2 p, int channel) {
-    return reinterpret_cast<uint16_t*>(image.data()) + (size_t{p.y} * kWidth + p.x) * 4 + channel;
-  };
-  const uint16_t nan = 0x7E00, inf = 0x7C00;                          // binary16
-  for (int c = 0; c < 3; ++c) *half(diffuse, poisoned[0], c) = nan;   // albedo, levels 0-3
-  *half(diffuse, poisoned[1], 3) = nan;                               // roughness, levels 0-2
-  for (int c = 0; c < 3; ++c) *half(specular, poisoned[2], c) = inf;  // F0, level 0 only
-  gbuffer_->diffuse.upload(ctx(), diffuse.data(), diffuse.size());
-  gbuffer_->specular.upload(ctx(), specular.data(), specular.size());
-  ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    engine::imageBarrier(cmd, gbuffer_->diffuse, VK_IMAGE_LAYOUT_GENERAL);
-    engine::imageBarrier(cmd, gbuffer_->specular, VK_IMAGE_LAYOUT_GENERAL);
-  });
+  using testing_gpu::kHalfInf;
+  using testing_gpu::kHalfNan;
+  pokeMaterials(*gbuffer_, {{false, poisoned[0], 0, 2, kHalfNan},   // albedo, levels 0-3
+                            {false, poisoned[1], 3, 3, kHalfNan},   // roughness, levels 0-2
+                            {true, poisoned[2], 0, 2, kHalfInf}});  // F0, level 0 only
   gi::AdaptiveSettings settings;
   settings.coarsestLevel = 3;
   settings.lightTolerance = 0.5f;  // as in LevelsMatchTheTwin: interpolation happens

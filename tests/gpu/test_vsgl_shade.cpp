@@ -279,22 +279,12 @@ TEST_F(VsglShadeTest, NonFiniteMaterialGivesFiniteLight) {
   const Shaded clean = shade(vsgls, VSGL_SHADE_GLOSSY);
   const std::vector<glm::uvec2> poisoned = {{12, 12}, {24, 16}, {34, 20}};
   for (const glm::uvec2& p : poisoned) ASSERT_FALSE(decoded_.at(p.x, p.y).background());
-  std::vector<std::byte> diffuse = gbuffer_->diffuse.readback(ctx());
-  std::vector<std::byte> specular = gbuffer_->specular.readback(ctx());
-  auto half = [](std::vector<std::byte>& image, glm::uvec2 p, int channel) {
-    return reinterpret_cast<uint16_t*>(image.data()) + (size_t{p.y} * kWidth + p.x) * 4 + channel;
-  };
-  const uint16_t nan = 0x7E00, inf = 0x7C00;                          // binary16
-  for (int c = 0; c < 3; ++c) *half(diffuse, poisoned[0], c) = nan;   // albedo
-  *half(diffuse, poisoned[1], 3) = nan;                               // roughness
-  for (int c = 0; c < 3; ++c) *half(specular, poisoned[2], c) = inf;  // F0
-  *half(diffuse, poisoned[2], 3) = inf;
-  gbuffer_->diffuse.upload(ctx(), diffuse.data(), diffuse.size());
-  gbuffer_->specular.upload(ctx(), specular.data(), specular.size());
-  ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    engine::imageBarrier(cmd, gbuffer_->diffuse, VK_IMAGE_LAYOUT_GENERAL);
-    engine::imageBarrier(cmd, gbuffer_->specular, VK_IMAGE_LAYOUT_GENERAL);
-  });
+  using testing_gpu::kHalfInf;
+  using testing_gpu::kHalfNan;
+  pokeMaterials(*gbuffer_, {{false, poisoned[0], 0, 2, kHalfNan},  // albedo
+                            {false, poisoned[1], 3, 3, kHalfNan},  // roughness
+                            {true, poisoned[2], 0, 2, kHalfInf},   // F0
+                            {false, poisoned[2], 3, 3, kHalfInf}});
   const Shaded dirty = shade(vsgls, VSGL_SHADE_GLOSSY);
   for (uint32_t y = 0; y < kHeight; ++y)
     for (uint32_t x = 0; x < kWidth; ++x) {
