@@ -38,7 +38,7 @@ Brdf brdfCos(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, const GBufferSample& s) {
   double alpha = std::max(s.roughness * s.roughness, kMinAlpha);
   double a2 = alpha * alpha;
   double nh = std::max(glm::dot(n, glm::normalize(v + l)), 0.0);
-  glm::dvec3 spec = ggxSpecular(n, v, l, s.f0, s.roughness);
+  glm::dvec3 spec = ggxSpecular(n, v, l, s.f0, s.f90, s.roughness);
   double d = nh * nh * (a2 - 1.0) + 1.0;
   double dRelative = (4.0 * nh * (1.0 - a2) * fp32Gamma(16) + 2.0 * fp32Gamma(4)) / d;
   glm::dvec3 specCos = spec * nl;

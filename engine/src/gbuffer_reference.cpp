@@ -132,10 +132,14 @@ GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 baryce
     roughness *= mr.g;  // glTF packing: G = roughness, B = metallic
     metallic *= mr.b;
   }
-  s.metallic = std::clamp(metallic, 0.0, 1.0);
+  metallic = std::clamp(metallic, 0.0, 1.0);
   s.roughness = std::clamp(roughness, 0.0, 1.0);
-  s.diffuse = glm::dvec3(base) * (1.0 - s.metallic);
-  s.f0 = glm::mix(glm::dvec3(0.04), glm::dvec3(base), s.metallic);
+  s.diffuse = glm::dvec3(base) * (1.0 - metallic);
+  // KHR_materials_specular scales the dielectric's F0 and F90 (gbuffer_resolve.comp).
+  const double strength = m.specularFactor;
+  s.f0 = glm::mix(glm::min(0.04 * glm::dvec3(m.specularColorFactor), glm::dvec3(1.0)) * strength,
+                  glm::dvec3(base), metallic);
+  s.f90 = strength + (1.0 - strength) * metallic;
   return s;
 }
 
@@ -180,7 +184,7 @@ GBufferData decodeGBuffer(uint32_t width, uint32_t height, std::span<const std::
     s.diffuse = glm::dvec3(d);
     s.roughness = d.w;
     s.f0 = glm::dvec3(f);
-    s.metallic = f.w;
+    s.f90 = f.w;
     // The resolve stores a zero normal for background texels; decoding it would invent +Z.
     if (!s.background())
       s.normal = octDecode(glm::dvec2(decodeSnorm16(loadTexel<int16_t>(normal, 2 * i)),

@@ -32,6 +32,33 @@ int SceneBuilder::textureImage(const tinygltf::TextureInfo& info, const std::str
   return texture.source;
 }
 
+// KHR_materials_specular: its two factors. Its textures (specularTexture, specularColorTexture)
+// are not supported; the factors stand for the whole surface.
+void SceneBuilder::convertSpecular(const tinygltf::Material& in, const std::string& where,
+                                   Material& out) {
+  const auto ext = in.extensions.find("KHR_materials_specular");
+  if (ext == in.extensions.end()) return;
+  const tinygltf::Value& v = ext->second;
+  if (!v.IsObject()) fail(where + ": KHR_materials_specular must be an object");
+  if (v.Has("specularFactor")) {
+    const tinygltf::Value& f = v.Get("specularFactor");
+    if (!f.IsNumber() || !inUnitRange(f.GetNumberAsDouble()))
+      fail(where + ": KHR_materials_specular specularFactor must be a number in [0, 1]");
+    out.specularFactor = static_cast<float>(f.GetNumberAsDouble());
+  }
+  if (v.Has("specularColorFactor")) {
+    const tinygltf::Value& c = v.Get("specularColorFactor");
+    if (!c.IsArray() || c.ArrayLen() != 3)
+      fail(where + ": KHR_materials_specular specularColorFactor must have 3 values");
+    for (int k = 0; k < 3; ++k) {
+      const tinygltf::Value& x = c.Get(k);
+      if (!x.IsNumber() || !(x.GetNumberAsDouble() >= 0.0) || !std::isfinite(x.GetNumberAsDouble()))
+        fail(where + ": KHR_materials_specular specularColorFactor values must be >= 0");
+      out.specularColorFactor[k] = static_cast<float>(x.GetNumberAsDouble());
+    }
+  }
+}
+
 void SceneBuilder::convertMaterials() {
   for (size_t m = 0; m < model_.materials.size(); ++m) {
     const tinygltf::Material& in = model_.materials[m];
@@ -53,6 +80,7 @@ void SceneBuilder::convertMaterials() {
     out.metallicRoughnessTexture =
         textureImage(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
     out.doubleSided = in.doubleSided;
+    convertSpecular(in, where, out);
     scene_.materials.push_back(std::move(out));
   }
 }

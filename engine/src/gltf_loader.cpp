@@ -27,9 +27,9 @@ namespace {
 
 constexpr const char* kLightsExtension = "KHR_lights_punctual";
 // Extensions a file may list as required. Emissive strength only scales emission, which this
-// module ignores anyway (see scene.h).
-constexpr std::string_view kUnderstoodExtensions[] = {"KHR_lights_punctual",
-                                                      "KHR_materials_emissive_strength"};
+// module ignores anyway (see scene.h); of KHR_materials_specular the factors are read.
+constexpr std::string_view kUnderstoodExtensions[] = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular"};
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();

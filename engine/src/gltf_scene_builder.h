@@ -39,6 +39,7 @@ class SceneBuilder : private ModelReader {
   // gltf_definitions.cpp
   int textureImage(const tinygltf::TextureInfo& info, const std::string& where) const;
   void convertMaterials();
+  void convertSpecular(const tinygltf::Material& in, const std::string& where, Material& out);
   void convertLights();
   void convertCameras();
 

@@ -53,6 +53,11 @@ json tidyArray(std::span<const float> values) {
   return array;
 }
 
+// Whether a material differs from KHR_materials_specular's defaults (written only then).
+bool hasSpecular(const Material& m) {
+  return m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f);
+}
+
 std::string base64(std::span<const uint8_t> bytes) {
   static constexpr char kAlphabet[] =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -222,6 +227,8 @@ class GltfBuilder {
       gltf["extensions"] = {{"KHR_lights_punctual", {{"lights", std::move(lights)}}}};
       gltf["extensionsUsed"] = json::array({"KHR_lights_punctual"});
     }
+    if (std::any_of(scene_.materials.begin(), scene_.materials.end(), hasSpecular))
+      gltf["extensionsUsed"].push_back("KHR_materials_specular");
     if (!nodes.empty()) {  // glTF arrays, when present, must not be empty
       json rootNodes = json::array();
       for (size_t i = 0; i < nodes.size(); ++i) rootNodes.push_back(i);
@@ -301,6 +308,11 @@ class GltfBuilder {
         pbr["metallicRoughnessTexture"] = {{"index", material.metallicRoughnessTexture}};
       }
       json out = {{"pbrMetallicRoughness", std::move(pbr)}, {"doubleSided", material.doubleSided}};
+      if (hasSpecular(material))
+        out["extensions"] = {
+            {"KHR_materials_specular",
+             {{"specularFactor", tidy(material.specularFactor)},
+              {"specularColorFactor", tidyArray({&material.specularColorFactor.x, 3})}}}};
       if (!material.name.empty()) out["name"] = material.name;
       materials.push_back(std::move(out));
     }

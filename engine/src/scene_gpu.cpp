@@ -118,6 +118,7 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
   for (const Material& m : scene.materials) {
     gpu::SceneMaterial g{};
     g.baseColorFactor = m.baseColorFactor;
+    g.specular = glm::vec4(m.specularColorFactor, m.specularFactor);
     g.metallic = m.metallicFactor;
     g.roughness = m.roughnessFactor;
     g.baseColorLayer = layerOf(baseLayers, m.baseColorTexture);

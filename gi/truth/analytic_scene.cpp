@@ -54,7 +54,7 @@ Lobes brdf(const AnalyticSceneParams& p, glm::dvec3 n, glm::dvec3 v, glm::dvec3 
   Lobes f;
   f.diffuse = rho / std::numbers::pi;
   if (!p.lambertOnly)
-    f.specular = engine::ggxSpecular(n, v, l, glm::dvec3(kAnalyticF0), kAnalyticRoughness);
+    f.specular = engine::ggxSpecular(n, v, l, glm::dvec3(kAnalyticF0), 1.0, kAnalyticRoughness);
   return f;
 }
 

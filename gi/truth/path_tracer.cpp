@@ -118,8 +118,8 @@ Reflected reflectLight(const EmbreeScene& rays, const gpu::GpuLight& light, cons
   const engine::GBufferSample& s = at.surface;
   Reflected r;
   r.diffuse = s.diffuse / kPi * nl * incidence.irradiance;
-  r.glossy =
-      engine::ggxSpecular(s.normal, toViewer, l, s.f0, s.roughness) * nl * incidence.irradiance;
+  r.glossy = engine::ggxSpecular(s.normal, toViewer, l, s.f0, s.f90, s.roughness) * nl *
+             incidence.irradiance;
   return r;
 }
 
@@ -253,8 +253,8 @@ class Tracer {
     Contribution c;
     if (cosine <= 0.0) return c;
     c.diffuse = s.diffuse / kPi * cosine * incoming * scale;
-    c.glossy =
-        engine::ggxSpecular(s.normal, px.view, dir, s.f0, s.roughness) * cosine * incoming * scale;
+    c.glossy = engine::ggxSpecular(s.normal, px.view, dir, s.f0, s.f90, s.roughness) * cosine *
+               incoming * scale;
     return c;
   }
 
@@ -306,7 +306,8 @@ class Tracer {
       return {};
     const engine::GBufferSample& s = y.surface;
     const glm::dvec3 radiance =
-        (s.diffuse / kPi + engine::ggxSpecular(s.normal, w, incidence.toLight, s.f0, s.roughness)) *
+        (s.diffuse / kPi +
+         engine::ggxSpecular(s.normal, w, incidence.toLight, s.f0, s.f90, s.roughness)) *
         nl * incidence.irradiance;
     const double areaB = lightSampler_.areaPdf(y.position, y.geometricNormal);
     const double geometry = std::abs(glm::dot(y.geometricNormal, w)) / d2;

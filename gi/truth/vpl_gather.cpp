@@ -48,6 +48,7 @@ std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, ui
     v.incident = t.incident;
     v.diffuse = s.diffuse;
     v.f0 = s.f0;
+    v.f90 = s.f90;
     v.roughness = s.roughness;
     // The texel's patch: its solid angle from the light (texelArea cos^3 on the unit-distance
     // plane, as the flux) times t^2 / cos at the surface; a parallel beam's texelArea / cos.
@@ -113,13 +114,14 @@ VplGatherImage vplGather(const engine::Scene& scene, const EmbreeScene& rays,
       };
       const glm::dvec3 fy =
           vpl.diffuse / std::numbers::pi +
-          engine::ggxSpecular(vpl.normal, -w, vpl.toLight, vpl.f0, widened(vpl.roughness));
+          engine::ggxSpecular(vpl.normal, -w, vpl.toLight, vpl.f0, vpl.f90, widened(vpl.roughness));
       // Intensity towards x: the patch's radiance f_y E, E = Phi_in / A (Phi_in already holds
       // the light's cosine), times A cos_y.
       const glm::dvec3 intensity = fy * vpl.incident * cosY;
       const glm::dvec3 arriving = intensity / (d2 + vpl.area / std::numbers::pi);
       diffuse += s.diffuse / std::numbers::pi * cosX * arriving;
-      glossy += engine::ggxSpecular(s.normal, v, w, s.f0, widened(s.roughness)) * cosX * arriving;
+      glossy +=
+          engine::ggxSpecular(s.normal, v, w, s.f0, s.f90, widened(s.roughness)) * cosX * arriving;
     }
     image.diffuse[i] = diffuse;
     image.glossy[i] = glossy;

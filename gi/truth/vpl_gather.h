@@ -32,6 +32,7 @@ struct Vpl {
   double area = 0.0;                // the texel's patch, m^2
   glm::dvec3 diffuse{0.0};          // albedo
   glm::dvec3 f0{0.0};
+  double f90 = 1.0;
   double roughness = 0.0;
 };
 

@@ -1,6 +1,6 @@
 // The surface model of the G-buffer: Lambert diffuse plus GGX microfacet specular with the
 // height-correlated Smith visibility (Heitz 2014, Eq. 99) and Schlick's Fresnel, as glTF's
-// metallic-roughness model specifies (alpha = r^2).
+// metallic-roughness model specifies (alpha = r^2), with F90 for KHR_materials_specular.
 #ifndef SHADERS_COMMON_BRDF_GLSL
 #define SHADERS_COMMON_BRDF_GLSL
 
@@ -24,14 +24,14 @@ float smithGgxCorrelatedV(float nv, float nl, float a2) {
   return 0.5 / max(gv + gl, 1e-12);
 }
 
-vec3 schlickFresnel(vec3 f0, float vh) {
+vec3 schlickFresnel(vec3 f0, float f90, float vh) {
   float m = 1.0 - vh;
   float m2 = m * m;
-  return f0 + (1.0 - f0) * (m2 * m2 * m);
+  return f0 + (f90 - f0) * (m2 * m2 * m);
 }
 
 // BRDF times cosine for unit n, v (to viewer), l (to light).
-vec3 brdfCos(vec3 n, vec3 v, vec3 l, vec3 diffuse, vec3 f0, float roughness) {
+vec3 brdfCos(vec3 n, vec3 v, vec3 l, vec3 diffuse, vec3 f0, float f90, float roughness) {
   float nl = dot(n, l);
   // Interpolated normals can face slightly away from the viewer; keep such pixels lit.
   float nv = max(dot(n, v), 1e-4);
@@ -39,7 +39,7 @@ vec3 brdfCos(vec3 n, vec3 v, vec3 l, vec3 diffuse, vec3 f0, float roughness) {
   float alpha = max(roughness * roughness, kMinAlpha);
   float a2 = alpha * alpha;
   vec3 h = normalize(v + l);
-  vec3 spec = ggxD(n, h, a2) * smithGgxCorrelatedV(nv, nl, a2) * schlickFresnel(f0, max(dot(v, h), 0.0));
+  vec3 spec = ggxD(n, h, a2) * smithGgxCorrelatedV(nv, nl, a2) * schlickFresnel(f0, f90, max(dot(v, h), 0.0));
   return (diffuse / kPi + spec) * nl;
 }
 

@@ -227,14 +227,16 @@ struct SgGgxReceiver {
   float reflectionIntegral;  // S(reflectionSharpness)
   vec3 dominantReflection;
   vec3 f0;
+  float f90;
   vec3 logWideFactor;
 };
 
 // Unit normal and view (surface to viewer); n . v is clamped to 1e-4 as in brdf.glsl.
-SgGgxReceiver sgGgxReceiver(vec3 normal, vec3 view, float alpha, vec3 f0) {
+SgGgxReceiver sgGgxReceiver(vec3 normal, vec3 view, float alpha, vec3 f0, float f90) {
   SgGgxReceiver r;
   r.normal = normal;
   r.f0 = f0;
+  r.f90 = f90;
   float a = clamp(alpha, kSgGgxMinAlpha, 1.0);
   r.alpha2 = a * a;
   float nvRaw = dot(normal, view);
@@ -261,7 +263,7 @@ SgGgxReceiver sgGgxReceiver(vec3 normal, vec3 view, float alpha, vec3 f0) {
   float ratioWide = ggxVisibilityRatioMean(r.reflectionSharpness, r.dominantReflection.z, r.nv,
                                            r.alpha2, upperCosineWide);
   vec2 table = ggxSpecularAlbedo(r.nv, a);
-  vec3 albedo = table.x + f0 * (table.y - table.x);
+  vec3 albedo = f90 * table.x + f0 * (table.y - table.x);  // A(F0, F90), as sg_math.cpp
   r.logWideFactor = log(max(albedo, vec3(kSgFltMin)) / max(ratioWide, kSgFltMin));
   return r;
 }
@@ -317,7 +319,7 @@ vec3 sgGgxReflection(Sg light, SgGgxReceiver r) {
   float vh = lobeHalfLength > 0.0 ? dot(wo, lobeHalf) / lobeHalfLength : 0.0;
   float m = 1.0 - max(vh, 0.0);
   float m2s = m * m;
-  vec3 fresnel = r.f0 + (1.0 - r.f0) * (m2s * m2s * m);
+  vec3 fresnel = r.f0 + (r.f90 - r.f0) * (m2s * m2s * m);
   vec3 logE = w * log(max(fresnel, vec3(kSgFltMin))) + (1.0 - w) * r.logWideFactor;
   return mass * ratio * exp(logE);
 }

@@ -120,21 +120,21 @@ void main() {
   vec3 view = -direction;
   vec3 normal = octDecode(imageLoad(gNormal, coord).rg);
   // A host's G-buffer can carry NaN or Inf in a material channel (a broken texture; vsgl-math.md
-  // section 12, case 14): such a channel reads as 0 (albedo, F0) or 1 (roughness), so that the
+  // section 12, case 14): such a channel reads as 0 (albedo, F0, F90) or 1 (roughness), so that the
   // pixel still gets finite light. The RSM side needs no guard: its attributes pass zeroes
   // non-finite texels.
   vec4 diffuseRoughness = imageLoad(gDiffuse, coord);
-  vec3 f0 = imageLoad(gSpecular, coord).rgb;
+  vec4 specular = imageLoad(gSpecular, coord);  // F0, F90
   // (A NaN fails every comparison, so |x| <= FLT_MAX holds exactly for the finite values.)
   diffuseRoughness = mix(vec4(0.0, 0.0, 0.0, 1.0), diffuseRoughness,
                          lessThanEqual(abs(diffuseRoughness), vec4(kSgFltMax)));
-  f0 = mix(vec3(0.0), f0, lessThanEqual(abs(f0), vec3(kSgFltMax)));
+  specular = mix(vec4(0.0), specular, lessThanEqual(abs(specular), vec4(kSgFltMax)));
   // The same alpha floor as the direct light's BRDF (common/brdf.glsl).
   float alpha = max(diffuseRoughness.a * diffuseRoughness.a, 1e-3);
   const bool glossy = (kFlags & VSGL_SHADE_GLOSSY) != 0u;
   const bool shadowed = (kFlags & VSGL_SHADE_VISIBILITY) != 0u;
   SgGgxReceiver ggx;  // the glossy term's per-pixel part (sg_lighting.glsl)
-  if (glossy) ggx = sgGgxReceiver(normal, view, alpha, f0);
+  if (glossy) ggx = sgGgxReceiver(normal, view, alpha, specular.rgb, specular.a);
 
   // The planner's sky skip: a subgroup with no pixel to shade has nothing to broadcast for.
   if ((kFlags & VSGL_SHADE_SKIP_SKY) != 0u && subgroupBallotBitCount(subgroupBallot(shaded)) == 0u) {

@@ -68,7 +68,7 @@ void main() {
   vec3 v = -dir;
   vec3 n = octDecode(imageLoad(gNormal, coord).rg);
   vec4 diffuseRough = imageLoad(gDiffuse, coord);
-  vec3 f0 = imageLoad(gSpecular, coord).rgb;
+  vec4 specular = imageLoad(gSpecular, coord);  // F0, F90
 
   vec3 radiance = vec3(0.0);
   for (uint i = 0u; i < pc.lightCount; ++i) {
@@ -95,7 +95,7 @@ void main() {
         irradiance *= falloff * falloff;
       }
     }
-    vec3 f = brdfCos(n, v, l, diffuseRough.rgb, f0, diffuseRough.a);
+    vec3 f = brdfCos(n, v, l, diffuseRough.rgb, specular.rgb, specular.a, diffuseRough.a);
     if (all(equal(f, vec3(0.0))) || all(equal(irradiance, vec3(0.0)))) continue;
     float visibility = 1.0;
     uint viewCount = lights[i].info.z;

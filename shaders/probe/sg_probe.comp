@@ -44,7 +44,7 @@ void main() {
     x = vec4(s.axis, s.sharpness);
     y.x = s.logAmplitude;
   } else if (p.function == SG_PROBE_GGX_REFLECTION) {
-    SgGgxReceiver r = sgGgxReceiver(p.b.xyz, p.c.xyz, p.b.w, vec3(p.c.w));
+    SgGgxReceiver r = sgGgxReceiver(p.b.xyz, p.c.xyz, p.b.w, vec3(p.c.w), 1.0);
     x.xyz = sgGgxReflection(Sg(p.a.xyz, p.a.w, 0.0), r);
   } else if (p.function == SG_PROBE_VPL_SPECULAR) {
     vec3 axis;

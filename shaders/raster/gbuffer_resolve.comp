@@ -100,10 +100,13 @@ void main() {
   metallic = clamp(metallic, 0.0, 1.0);
   roughness = clamp(roughness, 0.0, 1.0);
   vec3 diffuse = base.rgb * (1.0 - metallic);
-  vec3 f0 = mix(vec3(0.04), base.rgb, metallic);  // glTF's dielectric F0 (IOR 1.5)
+  // glTF's dielectric F0 (IOR 1.5) and F90, scaled by KHR_materials_specular.
+  vec4 specular = materials[material].specular;
+  vec3 f0 = mix(min(vec3(0.04) * specular.rgb, vec3(1.0)) * specular.a, base.rgb, metallic);
+  float f90 = mix(specular.a, 1.0, metallic);
 
   imageStore(outDepth, coord, vec4(depth));
   imageStore(outNormal, coord, vec4(octEncode(normal), 0.0, 0.0));
   imageStore(outDiffuse, coord, vec4(diffuse, roughness));
-  imageStore(outSpecular, coord, vec4(f0, metallic));
+  imageStore(outSpecular, coord, vec4(f0, f90));
 }

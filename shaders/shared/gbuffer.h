@@ -2,9 +2,11 @@
 //   depth    R32_SFLOAT       Vulkan NDC depth in [0, 1]; 1 = background (nothing hit)
 //   normal   R16G16_SNORM     world-space shading normal, octahedral (common/octahedral.glsl),
 //                             flipped to face the viewer
-//   diffuse  R16G16B16A16_SFLOAT  rgb = diffuse albedo (base colour * (1 - metallic)), a =
-//   perceptual roughness r (GGX alpha = r^2) specular R16G16B16A16_SFLOAT  rgb = F0 (mix(0.04, base
-//   colour, metallic)), a = metallic
+//   diffuse  R16G16B16A16_SFLOAT  rgb = diffuse albedo (base colour * (1 - metallic)),
+//                                 a = perceptual roughness r (GGX alpha = r^2)
+//   specular R16G16B16A16_SFLOAT  rgb = F0, a = F90 of Schlick's Fresnel (common/brdf.glsl);
+//                                 KHR_materials_specular scales a dielectric's pair
+//                                 (gi/include/gi/indirect_lighting.h states the formulas)
 // World positions are rebuilt from depth with the inverse view-projection matrix.
 #ifndef SHADERS_SHARED_GBUFFER_H
 #define SHADERS_SHARED_GBUFFER_H

@@ -15,8 +15,10 @@ struct SceneVertex {
 // (base colour: an sRGB array; metallic-roughness: a linear array). -1 = no texture.
 struct SceneMaterial {
   vec4 baseColorFactor;  // linear RGBA
-  float metallic;        // [0, 1]
-  float roughness;       // perceptual roughness [0, 1]
+  // KHR_materials_specular: rgb = specularColorFactor, a = specularFactor (engine::Material).
+  vec4 specular;
+  float metallic;   // [0, 1]
+  float roughness;  // perceptual roughness [0, 1]
   int baseColorLayer;
   int metallicRoughnessLayer;
 };
@@ -24,6 +26,6 @@ struct SceneMaterial {
 SHARED_END
 
 SHARED_ASSERT_SIZE(SceneVertex, 32);
-SHARED_ASSERT_SIZE(SceneMaterial, 32);
-SHARED_ASSERT_OFFSET(SceneMaterial, metallic, 16);
+SHARED_ASSERT_SIZE(SceneMaterial, 48);
+SHARED_ASSERT_OFFSET(SceneMaterial, metallic, 32);
 #endif

@@ -117,6 +117,7 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
     r.normal = s.normal;
     r.albedo = glm::dvec3(1.0);
     r.f0 = s.f0;
+    r.f90 = s.f90;
     r.roughness = s.roughness;
     return gi::shadeReference(r, vsgls_, true);
   }

@@ -118,9 +118,9 @@ Comparison compare(const GpuResolve& gpu, const GBufferData& cpu) {
     c.maxNormalAngle = std::max(c.maxNormalAngle, angle);
     if (!(angle <= kNormalTolerance)) fail(i, "normal off by " + std::to_string(angle) + " rad");
     const double gv[8] = {g.diffuse.r, g.diffuse.g, g.diffuse.b, g.roughness,
-                          g.f0.r,      g.f0.g,      g.f0.b,      g.metallic};
+                          g.f0.r,      g.f0.g,      g.f0.b,      g.f90};
     const double rv[8] = {r.diffuse.r, r.diffuse.g, r.diffuse.b, r.roughness,
-                          r.f0.r,      r.f0.g,      r.f0.b,      r.metallic};
+                          r.f0.r,      r.f0.g,      r.f0.b,      r.f90};
     for (int k = 0; k < 8; ++k) {
       c.maxMaterialRelative = std::max(
           c.maxMaterialRelative, std::abs(gv[k] - rv[k]) / std::max(std::abs(rv[k]), 0x1p-14));
@@ -234,20 +234,27 @@ TEST_F(GBufferTest, ConstantTexturesMultiplyFactors) {
   m.baseColorFactor = {0.8f, 0.9f, 0.5f, 1.0f};
   m.roughnessFactor = 0.9f;
   m.metallicFactor = 0.7f;
+  // KHR_materials_specular: half strength, a colour that clamps nothing (0.04 x 2 < 1).
+  m.specularFactor = 0.5f;
+  m.specularColorFactor = {0.5f, 1.0f, 2.0f};
   Scene scene = texturedQuad(makeTexture("base", 8, [&](int, int) { return kBase; }),
                              makeTexture("mr", 8, [&](int, int) { return kMr; }), m);
   engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
   GpuResolve gpu = resolve(scene, view);
   GBufferData cpu = engine::resolveGBufferReference(scene, view, gpu.visibility);
 
-  // factor * texture with glTF's metallic-roughness model, from the texel codes.
+  // factor * texture with glTF's metallic-roughness model and KHR_materials_specular, from the
+  // texel codes.
   glm::dvec3 base;
   for (int k = 0; k < 3; ++k)
     base[k] = m.baseColorFactor[k] * engine::srgbToLinear(kBase[k] / 255.0);
   const double roughness = m.roughnessFactor * (kMr.g / 255.0);
   const double metallic = m.metallicFactor * (kMr.b / 255.0);
   const glm::dvec3 diffuse = base * (1.0 - metallic);
-  const glm::dvec3 f0 = glm::mix(glm::dvec3(0.04), base, metallic);
+  const glm::dvec3 dielectricF0 =
+      0.04 * glm::dvec3(m.specularColorFactor) * double(m.specularFactor);
+  const glm::dvec3 f0 = glm::mix(dielectricF0, base, metallic);
+  const double f90 = m.specularFactor + (1.0 - m.specularFactor) * metallic;
   // The GPU: the 8-bit quantisation (half a code, scaled by the factors and carried through
   // the linear metallic mix), then fp16 storage.
   auto tolerance = [&](double expected, double textureError) {
@@ -263,22 +270,23 @@ TEST_F(GBufferTest, ConstantTexturesMultiplyFactors) {
     ASSERT_FALSE(r.background()) << "the quad fills the view";
     // The reference filters the same constant texels: equal up to double rounding.
     ASSERT_NEAR(r.roughness, roughness, 1e-12);
-    ASSERT_NEAR(r.metallic, metallic, 1e-12);
+    ASSERT_NEAR(r.f90, f90, 1e-12);
     for (int k = 0; k < 3; ++k) {
       ASSERT_NEAR(r.diffuse[k], diffuse[k], 1e-12);
       ASSERT_NEAR(r.f0[k], f0[k], 1e-12);
       const double baseError = m.baseColorFactor[k] * halfCodeStep(kBase[k], true);
       const double diffuseError = baseError * (1.0 - metallic) + std::abs(base[k]) * metallicError;
-      const double f0Error = baseError * metallic + std::abs(base[k] - 0.04) * metallicError;
+      const double f0Error =
+          baseError * metallic + std::abs(base[k] - dielectricF0[k]) * metallicError;
       ASSERT_NEAR(g.diffuse[k], diffuse[k], tolerance(diffuse[k], diffuseError)) << "pixel " << i;
       ASSERT_NEAR(g.f0[k], f0[k], tolerance(f0[k], f0Error)) << "pixel " << i;
       maxError =
           std::max({maxError, std::abs(g.diffuse[k] - diffuse[k]), std::abs(g.f0[k] - f0[k])});
     }
     ASSERT_NEAR(g.roughness, roughness, tolerance(roughness, roughnessError)) << "pixel " << i;
-    ASSERT_NEAR(g.metallic, metallic, tolerance(metallic, metallicError)) << "pixel " << i;
-    maxError =
-        std::max({maxError, std::abs(g.roughness - roughness), std::abs(g.metallic - metallic)});
+    const double f90Error = (1.0 - m.specularFactor) * metallicError;
+    ASSERT_NEAR(g.f90, f90, tolerance(f90, f90Error)) << "pixel " << i;
+    maxError = std::max({maxError, std::abs(g.roughness - roughness), std::abs(g.f90 - f90)});
   }
   RecordProperty("max_abs_error", std::to_string(maxError));
 }
@@ -341,7 +349,7 @@ TEST_F(GBufferTest, MagnifiedTexturesMatchBilinearReference) {
     ASSERT_NEAR(g.roughness, r.roughness,
                 roughnessError + kHalfRelative * r.roughness + kHalfAbsolute)
         << "pixel " << i;
-    ASSERT_EQ(g.metallic, 0.0);
+    ASSERT_EQ(g.f90, 1.0);  // a dielectric without KHR_materials_specular
     maxError = std::max(maxError, std::abs(g.roughness - r.roughness));
   }
   RecordProperty("max_abs_error", std::to_string(maxError));

@@ -321,7 +321,7 @@ TEST_F(StabilitySg, GlossyAtGrazingViewAndRoughnessExtremes) {
     const gpu::SgProbeCase& c = cases[i];
     const glm::dvec3 ref =
         gi::sgGgxReflection({glm::dvec3(glm::vec3(c.a)), double(c.a.w), 0.0}, glm::dvec3(n),
-                            glm::dvec3(glm::vec3(c.c)), double(c.b.w), glm::dvec3(c.c.w));
+                            glm::dvec3(glm::vec3(c.c)), double(c.b.w), glm::dvec3(c.c.w), 1.0);
     const double alpha = std::max(double(c.b.w), gi::kSgGgxMinAlpha);
     const std::string what = "n.v " + std::to_string(c.c.z) + ", alpha " + std::to_string(c.b.w) +
                              ", lambda " + std::to_string(c.a.w);

@@ -90,6 +90,7 @@ class VsglShadeTest : public testing_gpu::GpuTest {
     r.normal = s.normal;
     r.albedo = s.diffuse;
     r.f0 = s.f0;
+    r.f90 = s.f90;
     r.roughness = s.roughness;
     return r;
   }
@@ -217,6 +218,51 @@ TEST_F(VsglShadeTest, MatchesReference) {
   }
 }
 
+// KHR_materials_specular's strength s scales a dielectric's F0 and F90 alike, so the glossy
+// term is s times the full-strength one (Schlick's F and the tabulated albedo are both linear in
+// the pair; fp32 rounding only: 1e-5 relative), the diffuse term does not change (bit for bit),
+// and at s = 0 the glossy term is gone (below 1e-6 of full strength: the SG fit's floors keep
+// it a denormal rather than exactly 0). The CPU twin agrees at s = 0.5 (MatchesReference's
+// tolerance), so the F90 path is checked on both sides.
+TEST_F(VsglShadeTest, SpecularStrengthScalesTheGlossyTerm) {
+  const std::vector<gpu::Vsgl> vsgls = hardCaseVsgls(scene_, receiver(kWidth / 2, kHeight / 2));
+  const Shaded full = shade(vsgls, VSGL_SHADE_GLOSSY);
+  Shaded scaled[2];
+  for (int k = 0; k < 2; ++k) {
+    engine::Scene weak = scene_;
+    for (engine::Material& m : weak.materials) m.specularFactor = k == 0 ? 0.5f : 0.0f;
+    const engine::SceneGpu gpu = engine::uploadScene(ctx(), weak);
+    *gbuffer_ = renderGBuffer(gpu, view_);
+    scaled[k] = shade(vsgls, VSGL_SHADE_GLOSSY);
+    if (k == 0) decoded_ = engine::readbackGBuffer(ctx(), *gbuffer_);
+  }
+  double largest = 0.0;
+  for (const glm::vec4& g : full.glossy) largest = std::max({largest, double(g.r), double(g.g)});
+  ASSERT_GT(largest, 0.0);
+  size_t checked = 0;
+  for (uint32_t y = 0; y < kHeight; ++y)
+    for (uint32_t x = 0; x < kWidth; ++x) {
+      const size_t i = size_t{y} * kWidth + x;
+      if (decoded_.at(x, y).background()) continue;
+      EXPECT_EQ(decoded_.at(x, y).f90, 0.5);  // a dielectric: F90 = s
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(scaled[0].diffuse[i][c], full.diffuse[i][c]) << "pixel " << i;
+        EXPECT_NEAR(scaled[0].glossy[i][c], 0.5f * full.glossy[i][c],
+                    1e-5 * full.glossy[i][c] + 1e-7 * largest)
+            << "pixel " << i;
+        EXPECT_LE(scaled[1].glossy[i][c], 1e-6 * full.glossy[i][c] + 1e-12 * largest);
+      }
+      if (x % 4 == 0 && y % 4 == 0) {  // the twin on a sample of the pixels
+        const gi::IndirectRadiance r = gi::shadeReference(receiver(x, y), vsgls, true);
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(scaled[0].glossy[i][c], r.glossy[c], 2e-3 * r.glossy[c] + 1e-5 * largest)
+              << "pixel " << x << "," << y;
+        ++checked;
+      }
+    }
+  EXPECT_GT(checked, 20u);
+}
+
 // vsgl-math.md section 12, case 18: as v -> 0 a VSGL lobe is a point light with intensity
 // I(w) = Phi G(w; xi, lambda) / S(lambda), so the shading must match the point light's
 // rho / pi (n . l) I / d^2 and f_s(l, v) (n . l) I / d^2 to 1e-3 (relative, per pixel). The
@@ -252,7 +298,7 @@ TEST_F(VsglShadeTest, FarTinyVarianceIsPointLight) {
       const glm::dvec3 irradiance = intensity * nl / d2;
       const glm::dvec3 diffuse = r.albedo / 3.141592653589793 * irradiance;
       const glm::dvec3 glossy =
-          engine::ggxSpecular(r.normal, r.view, l, r.f0, r.roughness) * irradiance;
+          engine::ggxSpecular(r.normal, r.view, l, r.f0, r.f90, r.roughness) * irradiance;
       const size_t i = size_t{y} * kWidth + x;
       for (int c = 0; c < 3; ++c) {
         const double ed = std::abs(gpu.diffuse[i][c] - diffuse[c]) / diffuse[c];

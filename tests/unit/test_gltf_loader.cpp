@@ -380,6 +380,34 @@ TEST(GltfWriter, WritesTexturesAsPngBesideTheGltf) {
   EXPECT_EQ(back.uvs, scene.uvs);
 }
 
+// KHR_materials_specular's factors are read (textures are not supported), written back only
+// where they differ from the defaults, and listed in extensionsUsed.
+TEST(GltfLoader, ReadsAndWritesKhrMaterialsSpecular) {
+  json gltf = json::parse(readText(kGltfData / "triangle_spot.gltf"));
+  gltf["materials"][0]["extensions"]["KHR_materials_specular"] = {
+      {"specularFactor", 0.25}, {"specularColorFactor", {0.5, 1.0, 2.0}}};
+  gltf["extensionsRequired"] = {"KHR_materials_specular"};
+  TempDir dir;
+  writeText(dir / "specular.gltf", gltf.dump());
+  const engine::Scene scene = engine::loadGltf((dir / "specular.gltf").string());
+  ASSERT_FALSE(scene.materials.empty());
+  EXPECT_EQ(scene.materials[0].specularFactor, 0.25f);
+  EXPECT_EQ(scene.materials[0].specularColorFactor, glm::vec3(0.5f, 1.0f, 2.0f));
+  engine::writeGltf(scene, (dir / "back.gltf").string());
+  const json written = json::parse(readText(dir / "back.gltf"));
+  EXPECT_NE(std::find(written["extensionsUsed"].begin(), written["extensionsUsed"].end(),
+                      "KHR_materials_specular"),
+            written["extensionsUsed"].end());
+  const engine::Scene back = engine::loadGltf((dir / "back.gltf").string());
+  EXPECT_EQ(back.materials[0].specularFactor, 0.25f);
+  EXPECT_EQ(back.materials[0].specularColorFactor, glm::vec3(0.5f, 1.0f, 2.0f));
+  // Without the extension the defaults hold, and nothing is written.
+  const engine::Scene plain = engine::loadGltf((kGltfData / "triangle_spot.gltf").string());
+  EXPECT_EQ(plain.materials[0].specularFactor, 1.0f);
+  engine::writeGltf(plain, (dir / "plain.gltf").string());
+  EXPECT_EQ(readText(dir / "plain.gltf").find("KHR_materials_specular"), std::string::npos);
+}
+
 TEST(GltfWriter, RejectsInconsistentScenes) {
   engine::Scene scene = engine::loadGltf((kGltfData / "triangle_spot.gltf").string());
   scene.indices[2] = 7;
@@ -489,6 +517,17 @@ TEST(GltfLoaderErrors, BadReferencesAndValues) {
          g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 2}};
        },
        "texture 2 does not exist"},
+      {"specular",
+       [](json& g) {
+         g["materials"][0]["extensions"]["KHR_materials_specular"] = {{"specularFactor", 1.5}};
+       },
+       "KHR_materials_specular specularFactor must be a number in [0, 1]"},
+      {"specular colour",
+       [](json& g) {
+         g["materials"][0]["extensions"]["KHR_materials_specular"] = {
+             {"specularColorFactor", {1.0, -0.5, 1.0}}};
+       },
+       "specularColorFactor values must be >= 0"},
       {"yfov", [](json& g) { g["cameras"][0]["perspective"]["yfov"] = 4.0; }, "yfov"},
       {"outer cone",
        [](json& g) {

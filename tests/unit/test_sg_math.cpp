@@ -1058,7 +1058,8 @@ TEST(SgMathGlossy, ConstantLightIsTheWhiteFurnace) {
       const glm::dvec3 view = viewAtCosine(nv);
       const glm::dvec3 exact = albedoQuadrature(nv, alpha, f0);
       for (glm::dvec3 axis : {glm::dvec3(0.0, 0.0, 1.0), glm::dvec3(0.6, 0.0, -0.8)}) {
-        const glm::dvec3 got = sgGgxReflection({axis, 0.0, 0.0}, {0.0, 0.0, 1.0}, view, alpha, f0);
+        const glm::dvec3 got =
+            sgGgxReflection({axis, 0.0, 0.0}, {0.0, 0.0, 1.0}, view, alpha, f0, 1.0);
         for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - exact[c]) / exact[c]);
       }
     }
@@ -1110,7 +1111,7 @@ TEST(SgMathGlossy, MatchesQuadrature) {
           const glm::dvec3 axis = glossyLightAxis(k, view, alphas[a]);
           exact[k] = quadrature[next++];
           // A random log amplitude: it must be ignored.
-          got[k] = sgGgxReflection({axis, lambdas[l], 3.7}, normal, view, alphas[a], f0);
+          got[k] = sgGgxReflection({axis, lambdas[l], 3.7}, normal, view, alphas[a], f0, 1.0);
           largest = glm::max(largest, exact[k]);
         }
         GlossyError& e = errors[l][a];
@@ -1189,7 +1190,7 @@ TEST(SgMathGlossy, SharpLightIsTheBrdfAtItsAxis) {
         const glm::dvec3 axis = glossyLightAxis(k, view, alpha);
         const glm::dvec3 exact = sgIntegral(lambda) * specularTimesCosine(view, axis, alpha, f0);
         const glm::dvec3 got =
-            sgGgxReflection({axis, lambda, 0.0}, {0.0, 0.0, 1.0}, view, alpha, f0);
+            sgGgxReflection({axis, lambda, 0.0}, {0.0, 0.0, 1.0}, view, alpha, f0, 1.0);
         for (int c = 0; c < 3; ++c) worst = std::max(worst, relativeError(got[c], exact[c]));
       }
   std::printf("sharp-light limit (lambda = 1e10): worst relative error %.1e\n", worst);
@@ -1223,7 +1224,7 @@ TEST(SgMathGlossy, FiniteAndNonNegativeAtTheExtremes) {
     for (double lambda : sharpnesses)
       for (double alpha : alphas)
         for (glm::dvec3 axis : axes) {
-          const glm::dvec3 r = sgGgxReflection({axis, lambda, 0.0}, normal, view, alpha, f0);
+          const glm::dvec3 r = sgGgxReflection({axis, lambda, 0.0}, normal, view, alpha, f0, 1.0);
           ++count;
           for (int c = 0; c < 3; ++c) {
             ASSERT_TRUE(std::isfinite(r[c])) << nv << " " << lambda << " " << alpha;
@@ -1232,7 +1233,7 @@ TEST(SgMathGlossy, FiniteAndNonNegativeAtTheExtremes) {
           if (glm::dot(axis, normal) < 0.0 && lambda >= 1.0) {
             const glm::dvec3 above = axis - 2.0 * glm::dot(axis, normal) * normal;
             const glm::dvec3 mirrored =
-                sgGgxReflection({above, lambda, 0.0}, normal, view, alpha, f0);
+                sgGgxReflection({above, lambda, 0.0}, normal, view, alpha, f0, 1.0);
             EXPECT_LE(r.x, mirrored.x * (1.0 + 1e-9) + 1e-300)
                 << nv << " " << lambda << " " << alpha;
           }

@@ -16,10 +16,12 @@ constexpr double kMinNv = 1e-4;
 double ggxD(double nh, double a2);
 // V = G2 / (4 |n.l| |n.v|).
 double smithGgxCorrelatedV(double nv, double nl, double a2);
-glm::dvec3 schlickFresnel(glm::dvec3 f0, double vh);
+// F0 + (F90 - F0)(1 - v.h)^5 (F90 = 1 without KHR_materials_specular).
+glm::dvec3 schlickFresnel(glm::dvec3 f0, double f90, double vh);
 
 // The GGX specular BRDF f_s(l, v) (no cosine) for unit n, v (to the viewer), l (to the light)
-// and perceptual roughness r; 0 when l is below the surface.
-glm::dvec3 ggxSpecular(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, glm::dvec3 f0, double roughness);
+// and perceptual roughness r, Fresnel F0 and F90; 0 when l is below the surface.
+glm::dvec3 ggxSpecular(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, glm::dvec3 f0, double f90,
+                       double roughness);
 
 }  // namespace engine

@@ -31,8 +31,8 @@ struct GBufferSample {
   glm::dvec3 normal{0.0};   // world-space unit shading normal, facing the viewer
   glm::dvec3 diffuse{0.0};  // base colour * (1 - metallic)
   double roughness = 0.0;   // perceptual, GGX alpha = roughness^2
-  glm::dvec3 f0{0.0};       // mix(0.04, base colour, metallic)
-  double metallic = 0.0;
+  glm::dvec3 f0{0.0};       // mix(0.04 x specular colour x strength, base colour, metallic)
+  double f90 = 0.0;         // Schlick's grazing reflectance: mix(specular strength, 1, metallic)
 
   bool background() const { return depth >= 1.0f; }
 };

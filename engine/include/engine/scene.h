@@ -29,6 +29,11 @@ struct Material {
   float roughnessFactor = 1.0f;       // perceptual roughness r in [0, 1]; GGX alpha = r^2
   int baseColorTexture = -1;          // index into Scene::textures, -1 = none
   int metallicRoughnessTexture = -1;  // glTF packing: roughness in G, metallic in B
+  // KHR_materials_specular: a dielectric's specular reflection, F0 = min(0.04 x colour, 1) x
+  // strength and F90 = strength (Schlick); metals keep F0 = base colour and F90 = 1. Strength 0
+  // makes the dielectric purely diffuse. Its textures are not supported (the factors are used).
+  float specularFactor = 1.0f;          // [0, 1]
+  glm::vec3 specularColorFactor{1.0f};  // linear RGB, >= 0
   bool doubleSided = false;
 };
 

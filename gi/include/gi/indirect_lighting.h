@@ -51,7 +51,10 @@ struct ImageRef {
 //   normal   R16G16_SNORM         world-space unit normal, octahedral encoding, facing the viewer
 //   diffuse  R16G16B16A16_SFLOAT  rgb = diffuse albedo (base colour x (1 - metallic)),
 //                                 a = perceptual roughness r (GGX alpha = r^2)
-//   specular R16G16B16A16_SFLOAT  rgb = F0 (mix(0.04, base colour, metallic)), a = metallic
+//   specular R16G16B16A16_SFLOAT  rgb = F0, a = F90, Schlick's F = F0 + (F90 - F0)(1 - v.h)^5:
+//                                 F0 = mix(0.04 s c, base colour, metallic), F90 =
+//                                 mix(s, 1, metallic) with KHR_materials_specular's strength s
+//                                 and colour c (1 without it). F0 = F90 = 0: no glossy term.
 // The module leaves all four in VK_IMAGE_LAYOUT_GENERAL (also reported in FrameOutput).
 struct GBufferImages {
   uint32_t width = 0;
@@ -64,8 +67,8 @@ struct GBufferImages {
 //   vertices           gpu::SceneVertex per vertex: vec4(world position, u), vec4(unit normal, v)
 //   indices            uint32 x 3 per triangle, counter-clockwise seen from the front
 //   triangleMaterials  uint32 material index per triangle
-//   materials          gpu::SceneMaterial per material (glTF metallic-roughness factors and
-//                      texture layers, -1 = none)
+//   materials          gpu::SceneMaterial per material (glTF metallic-roughness factors,
+//                      KHR_materials_specular factors and texture layers, -1 = none)
 //   baseColorTextures  2-D array view, R8G8B8A8_SRGB, layers indexed by the materials
 //   dataTextures       2-D array view, R8G8B8A8_UNORM (glTF metallic-roughness: g = roughness,
 //                      b = metallic); both in SHADER_READ_ONLY_OPTIMAL, sampled with `sampler`

@@ -369,11 +369,11 @@ double ggxProjectedArea(double alpha2, double cosine) {
   return std::sqrt(alpha2 + (1.0 - alpha2) * cosine * cosine);
 }
 
-// Schlick's Fresnel, as brdf.glsl.
-glm::dvec3 schlickFresnel(glm::dvec3 f0, double cosine) {
+// Schlick's Fresnel with F90, as brdf.glsl.
+glm::dvec3 schlickFresnel(glm::dvec3 f0, double f90, double cosine) {
   const double m = 1.0 - std::max(cosine, 0.0);
   const double m2 = m * m;
-  return f0 + (1.0 - f0) * (m2 * m2 * m);
+  return f0 + (f90 - f0) * (m2 * m2 * m);
 }
 
 // The mean over an SG lobe (axis, sharpness; unnormalised) of f_spec cos / p without Fresnel,
@@ -436,10 +436,12 @@ glm::dvec2 ggxSpecularAlbedo(double nv, double alpha) {
       glm::mix(ggxSpecularAlbedoNode(i + 1, j), ggxSpecularAlbedoNode(i + 1, j + 1), ft), fu);
 }
 
-SgGgxReceiver sgGgxReceiver(glm::dvec3 normal, glm::dvec3 view, double alpha, glm::dvec3 f0) {
+SgGgxReceiver sgGgxReceiver(glm::dvec3 normal, glm::dvec3 view, double alpha, glm::dvec3 f0,
+                            double f90) {
   SgGgxReceiver r;
   r.normal = normal;
   r.f0 = f0;
+  r.f90 = f90;
   const double a = std::clamp(alpha, kSgGgxMinAlpha, 1.0);
   r.alpha2 = a * a;
 
@@ -481,7 +483,9 @@ SgGgxReceiver sgGgxReceiver(glm::dvec3 normal, glm::dvec3 view, double alpha, gl
   const double ratioWide = ggxVisibilityRatioMean(r.reflectionSharpness, r.dominantReflection.z,
                                                   r.nv, r.alpha2, upperCosineWide);
   const glm::dvec2 table = ggxSpecularAlbedo(r.nv, a);
-  const glm::dvec3 albedo = table.x + f0 * (table.y - table.x);
+  // A = F90 x + F0 (y - x): Schlick's F0 + (F90 - F0) s integrated against the table's two
+  // moments (x: of s alone, y: of 1).
+  const glm::dvec3 albedo = f90 * table.x + f0 * (table.y - table.x);
   for (int c = 0; c < 3; ++c) {
     r.logWideFactor[c] = std::log(std::max(albedo[c], kFltMin) / std::max(ratioWide, kFltMin));
   }
@@ -555,7 +559,7 @@ glm::dvec3 sgGgxReflection(const Sg& light, const SgGgxReceiver& r) {
   const glm::dvec3 lobeHalf = wo + fresnelAxis;
   const double lobeHalfLength = glm::length(lobeHalf);
   const double vh = lobeHalfLength > 0.0 ? glm::dot(wo, lobeHalf) / lobeHalfLength : 0.0;
-  const glm::dvec3 fresnel = schlickFresnel(r.f0, vh);
+  const glm::dvec3 fresnel = schlickFresnel(r.f0, r.f90, vh);
   glm::dvec3 result(0.0);
   for (int c = 0; c < 3; ++c) {
     // The FLT_MIN floor as in logWideFactor: F is 0 where f0 = 0 at normal incidence.
@@ -567,8 +571,8 @@ glm::dvec3 sgGgxReflection(const Sg& light, const SgGgxReceiver& r) {
 }
 
 glm::dvec3 sgGgxReflection(const Sg& light, glm::dvec3 normal, glm::dvec3 view, double alpha,
-                           glm::dvec3 f0) {
-  return sgGgxReflection(light, sgGgxReceiver(normal, view, alpha, f0));
+                           glm::dvec3 f0, double f90) {
+  return sgGgxReflection(light, sgGgxReceiver(normal, view, alpha, f0, f90));
 }
 
 }  // namespace gi

@@ -153,7 +153,7 @@ glm::dvec2 ggxSpecularAlbedoNode(int i, int j);
 // lambda ~ 10..100: docs/techniques/sg-lighting.md. >= 0 and finite for sharpness in [0, 2^41]
 // and beyond, alpha in [0, 1], any view (n . v < 0 included) and light axis.
 glm::dvec3 sgGgxReflection(const Sg& light, glm::dvec3 normal, glm::dvec3 view, double alpha,
-                           glm::dvec3 f0);
+                           glm::dvec3 f0, double f90);
 
 // The same split in two, for a receiver summing many lights: sgGgxReceiver holds every term that
 // depends only on the receiver (the view frame, the dominant reflection direction, the
@@ -170,9 +170,11 @@ struct SgGgxReceiver {
   double reflectionSharpness = 0.0;                 // q / 2
   glm::dvec3 dominantReflection{0.0, 0.0, 1.0};     // in the view frame
   glm::dvec3 f0{0.0};
-  glm::dvec3 logWideFactor{0.0};  // log(A(f0) / W_0), E's constant-light end
+  double f90 = 1.0;
+  glm::dvec3 logWideFactor{0.0};  // log(A(f0, f90) / W_0), E's constant-light end
 };
-SgGgxReceiver sgGgxReceiver(glm::dvec3 normal, glm::dvec3 view, double alpha, glm::dvec3 f0);
+SgGgxReceiver sgGgxReceiver(glm::dvec3 normal, glm::dvec3 view, double alpha, glm::dvec3 f0,
+                            double f90);
 glm::dvec3 sgGgxReflection(const Sg& light, const SgGgxReceiver& receiver);
 
 }  // namespace gi

@@ -8,7 +8,8 @@ namespace gi {
 IndirectRadiance shadeReference(const ShadeReceiver& receiver, std::span<const gpu::Vsgl> vsgls,
                                 bool glossy, const VsglVisibility& visibility) {
   const double alpha = std::max(receiver.roughness * receiver.roughness, 1e-3);
-  const SgGgxReceiver ggx = sgGgxReceiver(receiver.normal, receiver.view, alpha, receiver.f0);
+  const SgGgxReceiver ggx =
+      sgGgxReceiver(receiver.normal, receiver.view, alpha, receiver.f0, receiver.f90);
   glm::dvec3 diffuseSum(0.0);  // sum of E e^(l_p) D, times albedo at the end
   IndirectRadiance out;
   for (uint32_t k = 0; k < vsgls.size(); ++k) {

@@ -17,6 +17,7 @@ struct ShadeReceiver {
   glm::dvec3 view{0.0, 0.0, 1.0};    // unit, from the receiver toward the viewer
   glm::dvec3 albedo{0.0};            // diffuse albedo rho
   glm::dvec3 f0{0.0};                // Schlick F0
+  double f90 = 1.0;                  // Schlick F90 (KHR_materials_specular's strength)
   double roughness = 1.0;            // perceptual; GGX alpha = max(r^2, 1e-3) as brdf.glsl
 };
 
