@@ -50,6 +50,10 @@ CacheKey& CacheKey::add(const engine::Scene& scene) {
   for (const engine::Material& m : scene.materials) {
     add(m.baseColorFactor).add(m.metallicFactor).add(m.roughnessFactor);
     add(m.baseColorTexture).add(m.metallicRoughnessTexture).add(m.doubleSided);
+    // Only where it differs from the extension's defaults, so that the keys of scenes without it
+    // (the cached references) stay what they were.
+    if (m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f))
+      add(std::string("KHR_materials_specular")).add(m.specularFactor).add(m.specularColorFactor);
   }
   add(scene.textures.size());
   for (const engine::Texture& t : scene.textures) add(t.width).add(t.height).addVector(t.rgba8);

@@ -55,6 +55,12 @@ TEST(ReferenceCache, KeyChangesWithEveryInput) {
   scene.materials[0].roughnessFactor = 0.5f;
   EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), base);
   scene = truth::makeAnalyticScene(params);
+  scene.materials[0].specularFactor = 0.5f;
+  const uint64_t specular = truth::CacheKey().add(scene).add(view).value();
+  EXPECT_NE(specular, base);
+  scene.materials[0].specularColorFactor.g = 0.5f;
+  EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), specular);
+  scene = truth::makeAnalyticScene(params);
   EXPECT_EQ(truth::CacheKey().add(scene).add(view).value(), base);
   const engine::View wider = engine::cameraView(scene.cameras.front(), 9, 6);
   EXPECT_NE(truth::CacheKey().add(scene).add(wider).value(), base);
