@@ -278,7 +278,9 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
                          (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u);
   const VsglShade::Inputs shading{vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()};
   if (plan.adaptive)
-    adaptive.record(cmd, gbuffer, camera, shading, settings.adaptive, shade, indirect, &profiler);
+    adaptive.record(cmd, gbuffer, camera, shading, settings.adaptive,
+                    plan.glossy && settings.planner.skipGlossyWithoutSpecular, shade, indirect,
+                    &profiler);
   else
     shade.record(cmd, gbuffer, camera, shading, indirect, &profiler);
   if (settings.debugVsgl >= 0) {

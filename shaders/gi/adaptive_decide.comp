@@ -37,6 +37,11 @@ layout(std430, binding = 8) buffer Queue {
   AdaptiveQueueHeader head;
   uint entries[];
 };
+// The texels to shade without the glossy term (F0 = F90 = 0), when pc.splitGlossy is set.
+layout(std430, binding = 10) buffer PlainQueue {
+  AdaptiveQueueHeader plainHead;
+  uint plainEntries[];
+};
 // Level 0 only: the level each pixel's light was shaded at, -1 for the sky (a debug view).
 layout(binding = 9, r32f) uniform writeonly image2D outLevels;
 layout(push_constant) uniform Push { AdaptiveDecidePush pc; };
@@ -49,6 +54,7 @@ struct Surface {
   vec3 albedo;
   float roughness;
   vec3 f0;
+  float f90;
 };
 
 Surface surfaceAt(uvec2 pixel) {
@@ -61,7 +67,9 @@ Surface surfaceAt(uvec2 pixel) {
   s.normal = octDecode(imageLoad(gNormal, coord).rg);
   s.albedo = diffuseRoughness.rgb;
   s.roughness = diffuseRoughness.a;
-  s.f0 = imageLoad(gSpecular, coord).rgb;
+  vec4 specular = imageLoad(gSpecular, coord);
+  s.f0 = specular.rgb;
+  s.f90 = specular.a;
   return s;
 }
 
@@ -69,13 +77,14 @@ Surface surfaceAt(uvec2 pixel) {
 // relative to the texel's distance, and normals within the cone) and has its material. Written
 // so that a NaN anywhere fails the test: such a texel is shaded, and shading guards it.
 bool sameSurface(Surface s, Surface parent) {
-  vec3 f0Change = abs(s.f0 - parent.f0);
+  vec4 specularChange = abs(vec4(s.f0, s.f90) - vec4(parent.f0, parent.f90));
   return !parent.sky &&
          abs(dot(parent.normal, s.position - parent.position)) <=
              pc.planeTolerance * length(s.position) &&
          dot(s.normal, parent.normal) >= pc.normalCosine &&
          abs(s.roughness - parent.roughness) <= pc.roughnessTolerance &&
-         max(f0Change.r, max(f0Change.g, f0Change.b)) <= pc.f0Tolerance;
+         max(max(specularChange.r, specularChange.g), max(specularChange.b, specularChange.a)) <=
+             pc.f0Tolerance;
 }
 
 void main() {
@@ -146,9 +155,19 @@ void main() {
     }
   }
   if (!interpolate && !reuse) {
-    uint index = atomicAdd(head.shaded, 1u);
-    entries[index] = texel.x | (texel.y << ADAPTIVE_PACK_SHIFT);
-    if (index % ADAPTIVE_QUEUE_GROUP == 0u) atomicAdd(head.groupsX, 1u);
+    // No glossy term where F0 and F90 are 0, as the shading reads them (non-finite = 0).
+    vec4 specular = vec4(s.f0, s.f90);
+    specular = mix(vec4(0.0), specular, lessThanEqual(abs(specular), vec4(kFltMax)));
+    uint entry = texel.x | (texel.y << ADAPTIVE_PACK_SHIFT);
+    if (pc.splitGlossy != 0u && all(equal(specular, vec4(0.0)))) {
+      uint index = atomicAdd(plainHead.shaded, 1u);
+      plainEntries[index] = entry;
+      if (index % ADAPTIVE_QUEUE_GROUP == 0u) atomicAdd(plainHead.groupsX, 1u);
+    } else {
+      uint index = atomicAdd(head.shaded, 1u);
+      entries[index] = entry;
+      if (index % ADAPTIVE_QUEUE_GROUP == 0u) atomicAdd(head.groupsX, 1u);
+    }
     if (pc.level == 0u) imageStore(outLevels, store, vec4(0.0));
     return;
   }

@@ -51,7 +51,10 @@ struct AdaptiveDecidePush {
   float roughnessTolerance;
   float f0Tolerance;
   float lightTolerance;  // parents' light: max - min <= this x mean (luminance seen at x)
-  uint pad[3];
+  // 1: texels whose F0 and F90 are 0 (no glossy term) go to the plain queue, shaded without the
+  // glossy term (PlannerSettings::skipGlossyWithoutSpecular).
+  uint splitGlossy;
+  uint pad[2];
 };
 
 SHARED_END

@@ -29,6 +29,10 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
     testing_gpu::GpuTest::SetUp();
     if (IsSkipped()) return;
     scene_ = engine::makeBuiltinScene("cornell");
+    // The white walls and boxes without a specular lobe (KHR_materials_specular strength 0):
+    // their texels go to the plain queue.
+    for (engine::Material& m : scene_.materials)
+      if (m.name == "white") m.specularFactor = 0.0f;
     // 0.5 m back from the scene's camera: the box's outline against the sky is in view.
     engine::Camera camera = scene_.cameras.at(0);
     camera.cameraToWorld[3] += camera.cameraToWorld[2] * 0.5f;
@@ -57,13 +61,14 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
   // The pass's outputs, as the twin's levels: [L] is level L (0 = the module's outputs).
   struct Run {
     std::vector<gi::AdaptiveLevel> levels;
-    std::vector<std::set<uint32_t>> queues;  // packed texels per level
+    std::vector<std::set<uint32_t>> queues;  // packed texels per level, both queues
+    std::vector<std::set<uint32_t>> plain;   // of those, the plain queue's
     std::vector<gpu::AdaptiveQueueHeader> heads;
     gi::ShadingCounts counts;
     std::vector<float> levelMap;  // per pixel: the level its light was shaded at, -1 sky
   };
 
-  Run run(const gi::AdaptiveSettings& settings) {
+  Run run(const gi::AdaptiveSettings& settings, bool splitGlossy = true) {
     engine::Buffer buffer(ctx(), vsgls_.size() * sizeof(gpu::Vsgl),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload);
     buffer.upload(ctx(), std::span<const gpu::Vsgl>(vsgls_));
@@ -73,8 +78,9 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
     gi::IndirectImages out = gi::createIndirectImages(ctx(), kWidth, kHeight);
     const gi::VsglShade::Inputs in{&buffer, uint32_t(vsgls_.size()), VSGL_SHADE_GLOSSY,
                                    &ism.atlas(), ism.params()};
-    ctx().submitAndWait(
-        [&](VkCommandBuffer cmd) { pass.record(cmd, *gbuffer_, view_, in, settings, shade, out); });
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      pass.record(cmd, *gbuffer_, view_, in, settings, splitGlossy, shade, out);
+    });
     Run r;
     r.counts = pass.lastCounts();
     const std::vector<std::byte> map = pass.levelMap().readback(ctx());
@@ -94,12 +100,24 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
         l.exact.push_back(level > 0 && g[i].a == 1.0f);
       }
       r.levels.push_back(std::move(l));
-      const std::vector<uint32_t> words = pass.queue(level).readbackAs<uint32_t>(ctx());
-      gpu::AdaptiveQueueHeader head;
-      std::memcpy(&head, words.data(), sizeof(head));
-      const size_t first = sizeof(head) / 4;
-      r.queues.emplace_back(words.begin() + first, words.begin() + first + head.shaded);
-      r.heads.push_back(head);
+      r.queues.emplace_back();
+      r.plain.emplace_back();
+      for (bool plain : {false, true}) {
+        const std::vector<uint32_t> words = pass.queue(level, plain).readbackAs<uint32_t>(ctx());
+        gpu::AdaptiveQueueHeader head;
+        std::memcpy(&head, words.data(), sizeof(head));
+        const size_t first = sizeof(head) / 4;
+        const std::set<uint32_t> texels(words.begin() + first, words.begin() + first + head.shaded);
+        EXPECT_EQ(texels.size(), head.shaded) << "a texel queued twice";
+        EXPECT_EQ(head.groupsX, (head.shaded + ADAPTIVE_QUEUE_GROUP - 1) / ADAPTIVE_QUEUE_GROUP);
+        r.queues.back().insert(texels.begin(), texels.end());
+        if (plain) {
+          r.plain.back() = texels;
+          r.heads.back().shaded += head.shaded;  // the glossy head counts the rest
+        } else {
+          r.heads.push_back(head);
+        }
+      }
     }
     return r;
   }
@@ -151,11 +169,12 @@ TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
     // gives every level a mix of queued and interpolated texels.
     settings.lightTolerance = 0.5f;
     const Run gpu = run(settings);
-    size_t interpolatedAtZero = 0, queuedAtZero = 0, sky = 0, interpolatedAbove = 0;
+    size_t interpolatedAtZero = 0, queuedAtZero = 0, sky = 0, interpolatedAbove = 0,
+           plainQueued = 0;
     for (uint32_t level = coarsest + 1; level-- > 0;) {
       SCOPED_TRACE("coarsest " + std::to_string(coarsest) + ", level " + std::to_string(level));
       const gpu::AdaptiveDecidePush push =
-          gi::adaptiveDecidePush(settings, view_, kWidth, kHeight, level);
+          gi::adaptiveDecidePush(settings, view_, kWidth, kHeight, level, true);
       const gi::AdaptiveLevel twin = gi::adaptiveLevelReference(
           decoded_, push, level < coarsest ? &gpu.levels[level + 1] : nullptr,
           [&](glm::uvec2 pixel) { return shadeAt(pixel); });
@@ -163,8 +182,7 @@ TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
       const gpu::AdaptiveQueueHeader& head = gpu.heads[level];
       const size_t texels = size_t{twin.width} * twin.height;
       EXPECT_EQ(head.shaded + head.interpolated + head.reused + head.sky, texels);
-      EXPECT_EQ(head.groupsX, (head.shaded + ADAPTIVE_QUEUE_GROUP - 1) / ADAPTIVE_QUEUE_GROUP);
-      EXPECT_EQ(gpu.queues[level].size(), head.shaded) << "a texel queued twice";
+      EXPECT_EQ(gpu.queues[level].size(), head.shaded) << "a texel in both queues";
       double largest = 0.0;
       for (size_t i = 0; i < texels; ++i)
         largest = std::max({largest, twin.diffuse[i].g, twin.glossy[i].b});
@@ -202,10 +220,17 @@ TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
           }
         }
       EXPECT_EQ(skyTexels, head.sky);
+      size_t plainDiffer = 0;
+      for (uint32_t y = 0; y < twin.height; ++y)
+        for (uint32_t x = 0; x < twin.width; ++x)
+          plainDiffer += gpu.plain[level].count(pack(x, y)) != bool(twin.plain[twin.index({x, y})]);
+      EXPECT_EQ(plainDiffer, 0u) << "the plain queue is chosen by the material alone";
+      plainQueued += gpu.plain[level].size();
       std::printf(
-          "coarsest %u level %u: %u queued, %u interpolated, %u reused, %u sky, %zu decisions "
-          "differ\n",
-          coarsest, level, head.shaded, head.interpolated, head.reused, head.sky, disagree);
+          "coarsest %u level %u: %u queued (%zu without glossy), %u interpolated, %u reused, %u "
+          "sky, %zu decisions differ\n",
+          coarsest, level, head.shaded, gpu.plain[level].size(), head.interpolated, head.reused,
+          head.sky, disagree);
       EXPECT_LE(disagree, texels / 100);
       if (level > 0) interpolatedAbove += head.interpolated;
       if (level == 0) {
@@ -216,6 +241,8 @@ TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
     }
     // The case must exercise all three outcomes at full resolution, and interpolation above it.
     EXPECT_GT(interpolatedAbove, 0u);
+    EXPECT_GT(plainQueued, 0u);
+    EXPECT_LT(plainQueued, gpu.queues[0].size() + gpu.queues[1].size());
     EXPECT_GT(interpolatedAtZero, 0u);
     EXPECT_GT(queuedAtZero, 0u);
     EXPECT_GT(sky, 0u);
@@ -232,11 +259,12 @@ TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
 }
 
 // Coarsest level 0: every surface pixel is queued at level 0 and shaded by the same code as the
-// full-rate pass, so the images are identical bit for bit.
+// full-rate pass, so the images are identical bit for bit (without the glossy split, which the
+// next test covers).
 TEST_F(AdaptiveShadingTest, CoarsestLevelZeroIsFullShading) {
   gi::AdaptiveSettings settings;
   settings.coarsestLevel = 0;
-  const Run adaptive = run(settings);
+  const Run adaptive = run(settings, false);
   engine::Buffer buffer(ctx(), vsgls_.size() * sizeof(gpu::Vsgl),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload);
   buffer.upload(ctx(), std::span<const gpu::Vsgl>(vsgls_));
@@ -261,6 +289,42 @@ TEST_F(AdaptiveShadingTest, CoarsestLevelZeroIsFullShading) {
 }
 
 }  // namespace
+
+// The planner's "no glossy receiver" decision, per texel: texels whose F0 and F90 are 0 (the
+// white surfaces here) are shaded by the variant without the glossy term. With it on and off the
+// same texels are shaded and interpolated; the diffuse light is the same bit for bit, and so is
+// the glossy light everywhere else. On those texels the full variant's glossy light is not
+// exactly 0 (the SG fit's log floors leave ~1e-38), so it is bounded by 1e-6 of the pixel's
+// light (the identity within 1e-6 relative); with the split it is exactly 0.
+TEST_F(AdaptiveShadingTest, TexelsWithoutSpecularSkipTheGlossyTerm) {
+  gi::AdaptiveSettings settings;
+  const Run off = run(settings, false), on = run(settings, true);
+  uint32_t plain = 0;
+  for (uint32_t n : on.counts.shadedWithoutGlossy) plain += n;
+  EXPECT_GT(plain, 0u);
+  for (uint32_t n : off.counts.shadedWithoutGlossy) EXPECT_EQ(n, 0u);
+  EXPECT_EQ(on.counts.shaded, off.counts.shaded);
+  const gi::AdaptiveLevel &a = off.levels[0], &b = on.levels[0];
+  size_t zeroed = 0;
+  for (uint32_t y = 0; y < a.height; ++y)
+    for (uint32_t x = 0; x < a.width; ++x) {
+      const size_t i = a.index({x, y});
+      EXPECT_EQ(b.diffuse[i], a.diffuse[i]) << x << "," << y;
+      const engine::GBufferSample& s = decoded_.at(x, y);
+      const bool specular = s.f0 != glm::dvec3(0.0) || s.f90 != 0.0;
+      if (s.background() || specular) {
+        EXPECT_EQ(b.glossy[i], a.glossy[i]) << x << "," << y;
+        continue;
+      }
+      // A pixel without specular: its own glossy light, or light interpolated from texels
+      // without specular (the F0 test keeps materials apart), is 0 with the split.
+      EXPECT_EQ(b.glossy[i], glm::dvec3(0.0)) << x << "," << y;
+      const double light = a.diffuse[i].r + a.diffuse[i].g + a.diffuse[i].b;
+      for (int c = 0; c < 3; ++c) EXPECT_LE(a.glossy[i][c], 1e-6 * light) << x << "," << y;
+      ++zeroed;
+    }
+  EXPECT_GT(zeroed, a.diffuse.size() / 10);
+}
 
 // vsgl-math.md section 12, case 14, through the pyramid: non-finite material channels at
 // representative pixels of every level (and at an odd pixel, which level 0 alone reads) must

@@ -159,6 +159,9 @@ struct FramePlan {
 struct ShadingCounts {
   bool adaptive = false;             // false: adaptive shading was off and every pixel was shaded
   std::array<uint32_t, 4> shaded{};  // texels shaded (the cost: each x vsglCount pairs)
+  // Of those, the texels shaded without the glossy term: F0 = F90 = 0 there (the planner's
+  // PlannerSettings::skipGlossyWithoutSpecular).
+  std::array<uint32_t, 4> shadedWithoutGlossy{};
   std::array<uint32_t, 4> interpolated{};  // texels filled from their parents
   // Texels that could not interpolate but took the light their first parent shaded at the same
   // pixel (each pixel is shaded at most once: the cost never exceeds full-rate shading).

@@ -103,6 +103,10 @@ struct PlannerSettings {
   // others this decision changes the image: it removes the ISMs' own errors (light lost to
   // their holes and biases), where the exact visibility is 1.
   bool skipWithoutOccluders = true;
+  // Pixels with no glossy term (F0 = F90 = 0: a dielectric with KHR_materials_specular's
+  // strength 0) are shaded without it. Per texel, in adaptive shading's queues (with adaptive
+  // shading off every pixel runs the glossy term).
+  bool skipGlossyWithoutSpecular = true;
 };
 
 // Adaptive shading (docs/techniques/adaptive-shading.md, after [S4] section 3.2): the VSGL sum
@@ -124,8 +128,8 @@ struct AdaptiveSettings {
   float planeTolerance = 0.01f;
   // ... and their normals differ by at most this angle, radians, [0, pi].
   float normalAngle = 0.35f;
-  // Largest difference of perceptual roughness, [0, 1], and of any F0 channel, [0, 1], between
-  // a texel and its parents: light is not carried across a material edge.
+  // Largest difference of perceptual roughness, [0, 1], and of any F0 channel or F90, [0, 1],
+  // between a texel and its parents: light is not carried across a material edge.
   float roughnessTolerance = 0.05f;
   float f0Tolerance = 0.02f;
 };

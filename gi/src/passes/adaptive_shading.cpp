@@ -10,7 +10,7 @@ namespace gi {
 
 gpu::AdaptiveDecidePush adaptiveDecidePush(const AdaptiveSettings& settings,
                                            const engine::View& camera, uint32_t width,
-                                           uint32_t height, uint32_t level) {
+                                           uint32_t height, uint32_t level, bool splitGlossy) {
   gpu::AdaptiveDecidePush push{};
   push.invViewProjRelative = engine::relativeUnprojection(camera).invViewProjRelative;
   push.viewport = {width, height};
@@ -21,6 +21,7 @@ gpu::AdaptiveDecidePush adaptiveDecidePush(const AdaptiveSettings& settings,
   push.roughnessTolerance = settings.roughnessTolerance;
   push.f0Tolerance = settings.f0Tolerance;
   push.lightTolerance = settings.lightTolerance;
+  push.splitGlossy = splitGlossy ? 1u : 0u;
   return push;
 }
 
@@ -46,15 +47,17 @@ AdaptiveShading::AdaptiveShading(engine::Context& ctx, uint32_t width, uint32_t 
                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
               uint32_t(sizeof(gpu::AdaptiveDecidePush))),
-      counts_(ctx, sizeof(gpu::AdaptiveQueueHeader) * (ADAPTIVE_MAX_LEVEL + 1),
+      counts_(ctx, 2 * sizeof(gpu::AdaptiveQueueHeader) * (ADAPTIVE_MAX_LEVEL + 1),
               VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::Readback) {
   for (uint32_t level = 1; level <= ADAPTIVE_MAX_LEVEL; ++level)
     levels_.push_back(createIndirectImages(ctx, gpu::adaptiveLevelSize(width, level),
                                            gpu::adaptiveLevelSize(height, level)));
   for (uint32_t level = 0; level <= ADAPTIVE_MAX_LEVEL; ++level)
-    queues_.push_back(queueBuffer(ctx, width, height, level));
+    queues_.push_back(
+        {queueBuffer(ctx, width, height, level), queueBuffer(ctx, width, height, level)});
   std::memset(counts_.mapped(), 0, counts_.size());
   engine::ImageDesc desc;
   desc.width = width;
@@ -67,7 +70,7 @@ AdaptiveShading::AdaptiveShading(engine::Context& ctx, uint32_t width, uint32_t 
 
 void AdaptiveShading::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
                              const engine::View& camera, const VsglShade::Inputs& in,
-                             const AdaptiveSettings& settings, VsglShade& shade,
+                             const AdaptiveSettings& settings, bool splitGlossy, VsglShade& shade,
                              IndirectImages& out, engine::GpuProfiler* profiler) {
   engine::ProfileScope scope(profiler, cmd, "vsgl shading");
   const uint32_t coarsest = settings.coarsestLevel;
@@ -75,14 +78,15 @@ void AdaptiveShading::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
   gpu::AdaptiveQueueHeader empty{};
   empty.groupsY = empty.groupsZ = 1;
   for (uint32_t level = 0; level <= coarsest; ++level)
-    engine::updateBuffer(cmd, queues_[level], &empty, sizeof(empty));
+    for (const engine::Buffer* queue : {&queues_[level].glossy, &queues_[level].plain})
+      engine::updateBuffer(cmd, *queue, &empty, sizeof(empty));
   using engine::Binding;
   for (uint32_t level = coarsest + 1; level-- > 0;) {
     IndirectImages& target = level == 0 ? out : levels_[level - 1];
     // The parents: level + 1, or at the coarsest level (never read) the level's own images.
     IndirectImages& parent = level < coarsest ? levels_[level] : target;
     const gpu::AdaptiveDecidePush push =
-        adaptiveDecidePush(settings, camera, width_, height_, level);
+        adaptiveDecidePush(settings, camera, width_, height_, level, splitGlossy);
     {
       engine::ProfileScope decideScope(profiler, cmd, "adaptive decide L" + std::to_string(level));
       decide_.dispatch(
@@ -91,44 +95,56 @@ void AdaptiveShading::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
            Binding::storageImage(gbuffer.diffuse), Binding::storageImage(gbuffer.specular),
            Binding::storageImage(parent.diffuse), Binding::storageImage(parent.glossy),
            Binding::storageImage(target.diffuse), Binding::storageImage(target.glossy),
-           Binding::storage(queues_[level]), Binding::storageImage(levelMap_)},
+           Binding::storage(queues_[level].glossy), Binding::storageImage(levelMap_),
+           Binding::storage(queues_[level].plain)},
           push, engine::groupCount(gpu::adaptiveLevelSize(width_, level), ADAPTIVE_GROUP_X),
           engine::groupCount(gpu::adaptiveLevelSize(height_, level), ADAPTIVE_GROUP_Y));
       engine::computeBarrier(cmd);
     }
     VsglShade::Inputs queued = in;
     queued.flags |= VSGL_SHADE_QUEUE;
-    queued.queue = &queues_[level];
+    queued.queue = &queues_[level].glossy;
     queued.level = level;
     shade.record(cmd, gbuffer, camera, queued, target, profiler);
+    if (splitGlossy) {  // the same level's texels without a glossy term, by the variant without it
+      queued.flags &= ~VSGL_SHADE_GLOSSY;
+      queued.queue = &queues_[level].plain;
+      shade.record(cmd, gbuffer, camera, queued, target, profiler);
+    }
   }
   // The heads, for lastCounts() once the frame has completed.
   engine::computeToTransferBarrier(cmd);
-  for (uint32_t level = 0; level <= ADAPTIVE_MAX_LEVEL; ++level) {
-    const VkBufferCopy copy{0, level * sizeof(gpu::AdaptiveQueueHeader),
-                            sizeof(gpu::AdaptiveQueueHeader)};
-    if (level <= coarsest)
-      vkCmdCopyBuffer(cmd, queues_[level].handle(), counts_.handle(), 1, &copy);
-    else
-      vkCmdFillBuffer(cmd, counts_.handle(), copy.dstOffset, copy.size, 0);
-  }
+  for (uint32_t level = 0; level <= ADAPTIVE_MAX_LEVEL; ++level)
+    for (uint32_t plain = 0; plain < 2; ++plain) {
+      const VkBufferCopy copy{0, (2 * level + plain) * sizeof(gpu::AdaptiveQueueHeader),
+                              sizeof(gpu::AdaptiveQueueHeader)};
+      const engine::Buffer& queue = plain ? queues_[level].plain : queues_[level].glossy;
+      if (level <= coarsest)
+        vkCmdCopyBuffer(cmd, queue.handle(), counts_.handle(), 1, &copy);
+      else
+        vkCmdFillBuffer(cmd, counts_.handle(), copy.dstOffset, copy.size, 0);
+    }
   engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                         VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
 }
 
 ShadingCounts AdaptiveShading::lastCounts() const {
-  std::array<gpu::AdaptiveQueueHeader, ADAPTIVE_MAX_LEVEL + 1> heads;
+  // Per level: the glossy queue's head (which also counts interpolation, reuse and the sky),
+  // then the plain queue's.
+  std::array<gpu::AdaptiveQueueHeader, 2 * (ADAPTIVE_MAX_LEVEL + 1)> heads;
   std::memcpy(heads.data(), counts_.mapped(), sizeof(heads));
   ShadingCounts c;
   c.adaptive = true;
   for (uint32_t level = 0; level <= ADAPTIVE_MAX_LEVEL; ++level) {
-    c.shaded[level] = heads[level].shaded;
-    c.interpolated[level] = heads[level].interpolated;
-    c.reused[level] = heads[level].reused;
+    const gpu::AdaptiveQueueHeader &glossy = heads[2 * level], &plain = heads[2 * level + 1];
+    c.shaded[level] = glossy.shaded + plain.shaded;
+    c.shadedWithoutGlossy[level] = plain.shaded;
+    c.interpolated[level] = glossy.interpolated;
+    c.reused[level] = glossy.reused;
     c.pixelsFrom[level] = heads[0].fromLevel[level];
   }
-  c.pixelsFrom[0] += heads[0].shaded;
+  c.pixelsFrom[0] += c.shaded[0];
   c.skyPixels = heads[0].sky;
   return c;
 }

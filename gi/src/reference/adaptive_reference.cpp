@@ -16,6 +16,7 @@ struct Surface {
   glm::dvec3 albedo{0.0};
   double roughness = 0.0;
   glm::dvec3 f0{0.0};
+  double f90 = 0.0;
 };
 
 Surface surfaceAt(const engine::GBufferData& g, const gpu::AdaptiveDecidePush& push,
@@ -23,18 +24,19 @@ Surface surfaceAt(const engine::GBufferData& g, const gpu::AdaptiveDecidePush& p
   const engine::GBufferSample& t = g.at(pixel.x, pixel.y);
   const glm::dvec2 ndc = (glm::dvec2(pixel) + 0.5) / glm::dvec2(push.viewport) * 2.0 - 1.0;
   const glm::dvec4 h = glm::dmat4(push.invViewProjRelative) * glm::dvec4(ndc, t.depth, 1.0);
-  return {t.background(), glm::dvec3(h) / h.w, t.normal, t.diffuse, t.roughness, t.f0};
+  return {t.background(), glm::dvec3(h) / h.w, t.normal, t.diffuse, t.roughness, t.f0, t.f90};
 }
 
 // adaptive_decide.comp's sameSurface, in double.
 bool sameSurface(const Surface& s, const Surface& parent, const gpu::AdaptiveDecidePush& push) {
   const glm::dvec3 f0Change = glm::abs(s.f0 - parent.f0);
+  const double f90Change = std::abs(s.f90 - parent.f90);
   return !parent.sky &&
          std::abs(glm::dot(parent.normal, s.position - parent.position)) <=
              push.planeTolerance * glm::length(s.position) &&
          glm::dot(s.normal, parent.normal) >= push.normalCosine &&
          std::abs(s.roughness - parent.roughness) <= push.roughnessTolerance &&
-         std::max({f0Change.r, f0Change.g, f0Change.b}) <= push.f0Tolerance;
+         std::max({f0Change.r, f0Change.g, f0Change.b, f90Change}) <= push.f0Tolerance;
 }
 
 }  // namespace
@@ -51,6 +53,7 @@ AdaptiveLevel adaptiveLevelReference(const engine::GBufferData& g,
   out.glossy.assign(texels, glm::dvec3(0.0));
   out.origin.assign(texels, 0);
   out.queued.assign(texels, 0);
+  out.plain.assign(texels, 0);
   out.exact.assign(texels, 0);
   out.sky.assign(texels, 0);
   const glm::ivec2 parentSize(gpu::adaptiveLevelSize(push.viewport.x, parentLevel),
@@ -112,8 +115,12 @@ AdaptiveLevel adaptiveLevelReference(const engine::GBufferData& g,
       }
       if (!interpolate && !reuse) {
         const IndirectRadiance r = shade(pixel);
+        // No glossy term where F0 and F90 read as 0 (non-finite values read as 0).
+        bool specular = false;
+        for (double v : {s.f0.r, s.f0.g, s.f0.b, s.f90}) specular |= std::isfinite(v) && v != 0.0;
+        out.plain[i] = push.splitGlossy != 0 && !specular;
         diffuse = r.diffuse;
-        glossy = r.glossy;
+        glossy = out.plain[i] ? glm::dvec3(0.0) : r.glossy;
         origin = level;
         out.queued[i] = 1;
       }

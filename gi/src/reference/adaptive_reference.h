@@ -21,6 +21,7 @@ struct AdaptiveLevel {
   std::vector<glm::dvec3> diffuse, glossy;
   std::vector<uint32_t> origin;
   std::vector<uint8_t> queued;  // 1: shaded at this level
+  std::vector<uint8_t> plain;   // 1: queued, and shaded without the glossy term (push.splitGlossy)
   std::vector<uint8_t> exact;   // 1: queued, or reused from the first parent
   std::vector<uint8_t> sky;
 
