@@ -129,6 +129,7 @@ struct IndirectLighting::Impl {
   engine::Bounds bounds;
   float maxReflectance = 1.0f;  // SceneGeometry::maxReflectance
   bool canOcclude = true;       // SceneGeometry::canOcclude
+  float maxSpecular = 1.0f;     // SceneGeometry::maxSpecular
   FramePlan plan;               // of the last recorded frame
   engine::Rasterizer rasterizer;
   engine::GBufferResolve resolve;
@@ -152,7 +153,8 @@ namespace {
 
 // The effect planner (docs/integration.md, "The effect planner"): which passes this frame needs.
 // Each decision leaves out only work whose result is exactly zero or never read.
-FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance, bool canOcclude) {
+FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
+                    float maxSpecular, bool canOcclude) {
   FramePlan plan;
   plan.visibility = s.ismEnabled;
   plan.glossy = s.glossy;
@@ -166,6 +168,14 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
         "ism: nothing can occlude (SceneGeometry.canOcclude = false): no ISM build or test");
   }
   if (!s.glossy) plan.reasons.push_back("glossy: off in the settings: no glossy shading");
+  if (s.planner.skipGlossyWithoutSpecular && !(maxSpecular > 0.0f)) {
+    plan.glossy = plan.specularLobes = false;
+    plan.reasons.push_back(
+        "glossy: no surface has a specular lobe (SceneGeometry.maxSpecular = 0): no specular VSGL "
+        "lobes, specular attribute mips or glossy shading");
+  } else if (s.planner.skipGlossyWithoutSpecular && s.glossy && s.adaptive.enabled) {
+    plan.reasons.push_back("glossy: texels with F0 = F90 = 0 are shaded without the glossy term");
+  }
   if (plan.skySkipped)
     plan.reasons.push_back("sky: subgroups that see only sky skip the VSGL loop");
   if (s.adaptive.enabled)
@@ -185,7 +195,8 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
         "scene: no surface reflects (SceneGeometry.maxReflectance = 0): no RSM, PDF, VSGL, ISM "
         "or shading pass; black outputs");
   }
-  if (!plan.bounce) plan.visibility = plan.glossy = plan.skySkipped = plan.adaptive = false;
+  if (!plan.bounce)
+    plan.visibility = plan.glossy = plan.specularLobes = plan.skySkipped = plan.adaptive = false;
   return plan;
 }
 
@@ -218,7 +229,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
   const uint32_t rule = static_cast<uint32_t>(settings.rule);
 
-  plan = planFrame(settings, in.light, maxReflectance, canOcclude);
+  plan = planFrame(settings, in.light, maxReflectance, maxSpecular, canOcclude);
 
   ctx.recordDeferredSetup(cmd);
   profiler.beginFrame(cmd);
@@ -263,7 +274,7 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
     importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
                        &profiler);
   rsm.record(cmd, *scene, rasterizer, resolve, rsmView, light, &profiler);
-  attributes.record(cmd, rsm.vpls(), rsm.surface(), rsmView, mips, &profiler);
+  attributes.record(cmd, rsm.vpls(), rsm.surface(), rsmView, mips, &profiler, plan.specularLobes);
   if (brsm)
     brsmPdf->record(cmd, attributes, rsmView, importance->vsgls(), settings.brsm, mips, &profiler);
   const engine::Buffer* vsgls = &recordVsgls(cmd, rsmView, rule);
@@ -275,7 +286,8 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
   }
   const uint32_t flags = (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) |
                          (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
-                         (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u);
+                         (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u) |
+                         (plan.specularLobes ? 0u : VSGL_SHADE_DIFFUSE_LOBES);
   const VsglShade::Inputs shading{vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()};
   if (plan.adaptive)
     adaptive.record(cmd, gbuffer, camera, shading, settings.adaptive,
@@ -361,6 +373,9 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
                    std::to_string(s.triangleCount) + " triangles need");
   if (!glm::all(glm::lessThanEqual(s.boundsMin, s.boundsMax)))
     return failure("SceneGeometry.boundsMin: not below boundsMax on every axis");
+  if (!(s.maxSpecular >= 0.0f && s.maxSpecular <= 1.0f))
+    return failure("SceneGeometry.maxSpecular: " + std::to_string(s.maxSpecular) +
+                   " is outside [0, 1]");
   if (!(s.maxReflectance >= 0.0f && s.maxReflectance <= 1.0f))
     return failure("SceneGeometry.maxReflectance: " + std::to_string(s.maxReflectance) +
                    " is outside [0, 1]");
@@ -382,6 +397,7 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
   impl_->bounds = {s.boundsMin, s.boundsMax};
   impl_->maxReflectance = s.maxReflectance;
   impl_->canOcclude = s.canOcclude;
+  impl_->maxSpecular = s.maxSpecular;
   return {};
 }
 

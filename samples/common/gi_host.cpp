@@ -45,6 +45,24 @@ float maxReflectance(const engine::Scene& scene) {
   return std::min(bound, 1.0f);
 }
 
+float maxSpecular(const engine::Scene& scene) {
+  float bound = 0.0f;
+  for (const engine::Material& m : scene.materials) {
+    float metallic = m.metallicFactor;  // the largest metallic over the texture
+    if (m.metallicRoughnessTexture >= 0) {
+      uint8_t hi = 0;
+      const std::vector<uint8_t>& t = scene.textures.at(size_t(m.metallicRoughnessTexture)).rgba8;
+      for (size_t i = 2; i < t.size(); i += 4) hi = std::max(hi, t[i]);
+      metallic *= float(hi) / 255.0f;
+    }
+    // F90 = s + (1 - s) metallic and F0 <= max(F0 of the dielectric, base colour) <= 1 once
+    // metallic > 0; for a dielectric F0 = min(0.04 c, 1) s <= s.
+    const float f90 = m.specularFactor + (1.0f - m.specularFactor) * std::min(metallic, 1.0f);
+    bound = std::max({bound, f90, metallic > 0.0f ? 1.0f : 0.0f});
+  }
+  return std::min(bound, 1.0f);
+}
+
 bool canOcclude(const engine::Scene& scene) {
   if (scene.triangleCount() > kOccluderTestTriangles) return true;
   const engine::Bounds b = scene.bounds();
@@ -80,6 +98,7 @@ gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::
   geometry.boundsMax = bounds.max;
   geometry.maxReflectance = maxReflectance(scene);
   geometry.canOcclude = canOcclude(scene);
+  geometry.maxSpecular = maxSpecular(scene);
   return geometry;
 }
 

@@ -29,6 +29,12 @@ const engine::Light* bouncingLight(const engine::Scene& scene);
 float maxReflectance(const engine::Scene& scene);
 // `gpuScene`'s buffers and images as the API's plain handles, with `scene`'s bounds and
 // reflectance bound.
+// An upper bound of any surface's specular reflectance (SceneGeometry::maxSpecular): F0 =
+// mix(min(0.04 c, 1) s, base, metallic) and F90 = mix(s, 1, metallic) with KHR_materials_specular's
+// strength s and colour c, bounded with the largest metallic of each material's texture. 0 only
+// when every material is a dielectric (metallic 0 everywhere) of strength 0.
+float maxSpecular(const engine::Scene& scene);
+
 // Whether any surface of `scene` can block light between two others
 // (SceneGeometry::canOcclude): false when every vertex lies on or in front of every triangle's
 // plane, within 1e-5 of the scene's size (the inside of a convex room). Scenes of more than

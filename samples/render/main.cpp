@@ -117,9 +117,12 @@ int run(const render::Options& o) {
     std::printf("adaptive shading: %u texels shaded for %u surface pixels (%.1f %%); per level:",
                 shaded, surface, 100.0 * shaded / std::max(surface, 1u));
     for (uint32_t level = 0; level < counts.shaded.size(); ++level)
-      std::printf(" L%u %u shaded, %u interpolated, %u reused, light of %.1f %% of the pixels;",
-                  level, counts.shaded[level], counts.interpolated[level], counts.reused[level],
-                  100.0 * counts.pixelsFrom[level] / std::max(surface, 1u));
+      std::printf(
+          " L%u %u shaded (%u without glossy), %u interpolated, %u reused, light of %.1f %% of the "
+          "pixels;",
+          level, counts.shaded[level], counts.shadedWithoutGlossy[level],
+          counts.interpolated[level], counts.reused[level],
+          100.0 * counts.pixelsFrom[level] / std::max(surface, 1u));
     std::printf("\n");
   }
   // The machine's FMA and memory peaks in the same run, to read the pass times against

@@ -64,6 +64,13 @@ uint32_t shadowResolutionFor(const Options& o) {
   return resolution;
 }
 
+// --planner off: every decision of the effect planner off.
+gi::PlannerSettings plannerOff() {
+  gi::PlannerSettings p;
+  p.skipWithoutBounce = p.skipSky = p.skipWithoutOccluders = p.skipGlossyWithoutSpecular = false;
+  return p;
+}
+
 Options parseOptions(int argc, char** argv) {
   Options o;
   // Shading costs ~N x pixels (0.3-0.6 us per pair on lavapipe): 128 VSGLs keep the default run
@@ -130,8 +137,7 @@ Options parseOptions(int argc, char** argv) {
       o.gi.glossy = false;
     else if (arg == "--planner")  // every planner decision at once, for comparison
       o.gi.planner = parseChoice<gi::PlannerSettings>(
-          arg, args.value(),
-          {{"on", gi::PlannerSettings{}}, {"off", gi::PlannerSettings{false, false, false}}});
+          arg, args.value(), {{"on", gi::PlannerSettings{}}, {"off", plannerOff()}});
     else if (arg == "--adaptive")
       o.gi.adaptive.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--adaptive-level")

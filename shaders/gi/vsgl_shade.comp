@@ -167,7 +167,8 @@ void main() {
       float visibility = shadowed ? ismVisibility(pc.ism, frame, first + j, receiver, normal) : 1.0;
       if (visibility == 0.0) continue;
       addLobe(diffuseLobe, visibility, receiver, normal, glossy, ggx, diffuseSum, glossySum);
-      addLobe(specularLobe, visibility, receiver, normal, glossy, ggx, diffuseSum, glossySum);
+      if ((kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u)
+        addLobe(specularLobe, visibility, receiver, normal, glossy, ggx, diffuseSum, glossySum);
     }
   }
   if (inside) {

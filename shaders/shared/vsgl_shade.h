@@ -17,7 +17,10 @@
 // Shade the texels of one level's adaptive-shading queue (shared/adaptive_shading.h) instead of
 // every pixel: 1-D groups of ADAPTIVE_QUEUE_GROUP, dispatched indirectly from the queue's head.
 #define VSGL_SHADE_QUEUE 8u
-#define VSGL_SHADE_VARIANTS 16u  // every combination of the flags
+// The VSGLs' specular lobes are left out: they carry no power (no surface has a specular lobe,
+// the effect planner's SceneGeometry::maxSpecular = 0), so they would add exactly 0.
+#define VSGL_SHADE_DIFFUSE_LOBES 16u
+#define VSGL_SHADE_VARIANTS 32u  // every combination of the flags
 // Incoming-radiance log amplitudes are clamped here before exp(): e^80 ~ 5.5e34 keeps a
 // receiver touching a zero-variance lobe finite (vsgl-math.md section 12, case 12) and, unlike
 // +inf, never turns into NaN when multiplied by a zero lighting integral.

@@ -93,6 +93,10 @@ struct SceneGeometry {
   // albedo or specular F0, textures included, in [0, 1]. 0 means nothing can bounce light, and
   // the effect planner then skips every pass (FramePlan). A host that does not know leaves 1.
   float maxReflectance = 1.0f;
+  // The largest F0 channel or F90 of any material, textures included, in [0, 1]. 0 means no
+  // surface has a specular lobe: the effect planner then builds no glossy VSGL lobes or their
+  // attribute mips and shades no glossy term (FramePlan). A host that does not know leaves 1.
+  float maxSpecular = 1.0f;
   // Whether any surface can block light between two others. false, e.g. for the inside of a
   // convex room, where every vertex lies on or in front of every triangle's plane: the
   // effect planner then skips the ISMs (FramePlan). A host that does not know leaves true.
@@ -149,6 +153,7 @@ struct FramePlan {
   bool bounce = true;                // RSM, PDF, VSGL generation, ISM and shading ran
   bool visibility = true;            // the ISMs were built and tested
   bool glossy = true;                // the glossy term was shaded
+  bool specularLobes = true;         // the VSGLs' specular lobes were built and shaded
   bool skySkipped = true;            // subgroups that see only sky skipped the VSGL loop
   bool adaptive = true;              // shaded on the adaptive pyramid (Settings::adaptive)
   std::vector<std::string> reasons;  // one line per decision that left work out

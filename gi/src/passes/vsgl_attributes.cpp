@@ -17,7 +17,7 @@ VsglAttributes::VsglAttributes(engine::Context& ctx, uint32_t size, std::string 
 
 void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface,
                             const RsmView& view, const MipPyramid& mips,
-                            engine::GpuProfiler* profiler) {
+                            engine::GpuProfiler* profiler, bool specular) {
   if (vpls.width > size_ || vpls.height > size_)
     throw engine::Error("VSGL attributes: source " + std::to_string(vpls.width) + "x" +
                         std::to_string(vpls.height) + " exceeds the " + std::to_string(size_) +
@@ -53,7 +53,16 @@ void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffe
     engine::computeBarrier(cmd);
   }
   engine::ProfileScope scope(profiler, cmd, passPrefix_ + "attribute mipmapping");
-  for (auto& p : pyramids_) mips.record(cmd, p);
+  for (int a = 0; a < VSGL_ATTR_COUNT; ++a)
+    if (specular || a < VSGL_ATTR_SPECULAR_POWER) mips.record(cmd, pyramids_[a]);
+  if (!specular) {
+    VkClearColorValue zero{};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
+    engine::computeToTransferBarrier(cmd);
+    for (int a = VSGL_ATTR_SPECULAR_POWER; a <= VSGL_ATTR_SPECULAR_AXIS; ++a)
+      vkCmdClearColorImage(cmd, pyramids_[a].handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    engine::transferToComputeBarrier(cmd);
+  }
 }
 
 }  // namespace gi

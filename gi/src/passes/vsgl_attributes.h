@@ -22,8 +22,12 @@ class VsglAttributes {
   // carries no power and no PDF, vsgl-math.md 5.3) and the normals of `surface`, then the mips.
   // The padding is cleared when the source extent changes, so every recorded command buffer
   // must be submitted.
+  // specular = false (the effect planner: no surface has a specular lobe, so the specular
+  // pyramids' level 0 is zero) clears the specular pyramids instead of reducing them: the same
+  // zeros, without their mip passes.
   void record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface, const RsmView& view,
-              const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr);
+              const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr,
+              bool specular = true);
 
   engine::Image& pyramid(int attribute) { return pyramids_.at(attribute); }
 
