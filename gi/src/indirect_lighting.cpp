@@ -153,8 +153,8 @@ namespace {
 
 // The effect planner (docs/integration.md, "The effect planner"): which passes this frame needs.
 // Each decision leaves out only work whose result is exactly zero or never read.
-FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
-                    float maxSpecular, bool canOcclude) {
+FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance, float maxSpecular,
+                    bool canOcclude) {
   FramePlan plan;
   plan.visibility = s.ismEnabled;
   plan.glossy = s.glossy;
@@ -272,7 +272,7 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
   // [S3] generates the importance VSGLs with the rule under test and K = 1.
   if (brsm)
     importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
-                       &profiler);
+                       &profiler, plan.specularLobes);
   rsm.record(cmd, *scene, rasterizer, resolve, rsmView, light, &profiler);
   attributes.record(cmd, rsm.vpls(), rsm.surface(), rsmView, mips, &profiler, plan.specularLobes);
   if (brsm)

@@ -37,7 +37,7 @@ ImportanceVsgls::ImportanceVsgls(engine::Context& ctx, uint32_t width, uint32_t 
 
 void ImportanceVsgls::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
                              const engine::View& view, const VsglSettings& settings,
-                             const MipPyramid& mips, engine::GpuProfiler* profiler) {
+                             const MipPyramid& mips, engine::GpuProfiler* profiler, bool specular) {
   if (view.width != vpls_.width || view.height != vpls_.height)
     throw engine::Error("BRSM importance: view " + std::to_string(view.width) + "x" +
                         std::to_string(view.height) + " differs from the " +
@@ -46,7 +46,7 @@ void ImportanceVsgls::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
   const RsmView importance = cameraImportanceView(view);
   // Unit emission without falloff: a pixel's weight is its reflectance times its solid angle.
   flux_.record(cmd, gbuffer, importance, FluxSource{}, vpls_, profiler);
-  attributes_.record(cmd, vpls_, gbuffer, importance, mips, profiler);
+  attributes_.record(cmd, vpls_, gbuffer, importance, mips, profiler, specular);
   generator_.record(cmd, attributes_, importance, settings, profiler);
 }
 
