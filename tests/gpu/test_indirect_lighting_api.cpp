@@ -214,6 +214,14 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   settings.kmeans.iterations = 0;
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
   EXPECT_EQ(status.message, "Settings.kmeans.iterations: 0 is outside [1, 64]");
+  settings = smallSettings();
+  settings.adaptive.coarsestLevel = 4;
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message, "Settings.adaptive.coarsestLevel: 4 is outside [0, 3]");
+  settings = smallSettings();
+  settings.adaptive.lightTolerance = -1.0f;
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message.rfind("Settings.adaptive.lightTolerance: -1", 0), 0u) << status.message;
 
   settings = smallSettings();
   auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
@@ -228,6 +236,11 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   gi::SceneGeometry empty = geometry();
   empty.triangleCount = 0;
   EXPECT_FALSE(lighting->setScene(empty));
+  gi::SceneGeometry bright = geometry();
+  bright.maxSpecular = 2.0f;
+  const gi::Status refused = lighting->setScene(bright);
+  EXPECT_FALSE(refused);
+  EXPECT_EQ(refused.message.rfind("SceneGeometry.maxSpecular: 2", 0), 0u) << refused.message;
   ASSERT_TRUE(lighting->setScene(geometry()));
   // A G-buffer of another size is refused (resolution change = recreate).
   gi::FrameInput wrong = input();
@@ -242,6 +255,10 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   next.rule = gi::KernelRule::Tok15;
   next.ismEnabled = false;
   next.method = gi::VsglMethod::KmeansImage;  // the baseline may be switched on per frame
+  next.adaptive.enabled = false;              // and adaptive shading off, or its levels changed
+  EXPECT_TRUE(lighting->setSettings(next));
+  next.adaptive.enabled = true;
+  next.adaptive.coarsestLevel = 3;
   EXPECT_TRUE(lighting->setSettings(next));
   next.rsmSize = 128;
   EXPECT_FALSE(lighting->setSettings(next));
