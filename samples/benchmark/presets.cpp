@@ -24,7 +24,7 @@ Preset preset(const std::string& name) {
             .frames = 2,
             .referenceNoise = 0.05f};
   // vsgl_render's defaults swept over N and K, at half its image size: on two cores the whole
-  // sweep, references included, takes about 25 min instead of almost 2 h. The VSGL stage does not
+  // sweep, references included, takes about 30 min instead of about 2 h. The VSGL stage does not
   // depend on the image size, and shading and the BRSM cost per pixel; --width 640 --height 360
   // gives the renderer's own size.
   if (name == "default")
