@@ -13,8 +13,8 @@ struct Preset {
   std::vector<std::string> scenes;
   // vsgl_render --method names, and modified-full: modified FIS with adaptive shading off
   std::vector<std::string> methods;
-  std::vector<uint32_t> counts;      // VSGLs N
-  std::vector<float> kernelScales;   // K (filtered methods only; k-means has none)
+  std::vector<uint32_t> counts;     // VSGLs N
+  std::vector<float> kernelScales;  // K (filtered methods only; k-means has none)
   // RSM sides of the brute-force VPL gather rows (gi/truth, on the CPU: a row costs pixels x
   // RSM texels visibility rays, so the sizes stay small); empty = no such rows.
   std::vector<uint32_t> vplRsmSizes;

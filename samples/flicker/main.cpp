@@ -147,9 +147,10 @@ gi::Settings methodSettings(const std::string& word, const Options& o) {
   else if (method == "kmeans-3d")
     s.method = gi::VsglMethod::KmeansWorld;
   else if (method != "modified")
-    throw engine::Error("--methods: '" + word +
-                        "' is not one of tok15, modified (each with an optional -kK), modified-full, "
-                        "kmeans-2d, kmeans-3d");
+    throw engine::Error(
+        "--methods: '" + word +
+        "' is not one of tok15, modified (each with an optional -kK), modified-full, "
+        "kmeans-2d, kmeans-3d");
   if (std::string bad = gi::validateSettings(s); !bad.empty()) throw engine::Error(bad);
   return s;
 }

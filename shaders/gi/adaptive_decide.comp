@@ -15,11 +15,10 @@
 #include "shared/adaptive_shading.h"
 #include "common/camera_ray.glsl"
 #include "common/color.glsl"
+#include "common/finite_material.glsl"
 #include "common/octahedral.glsl"
 
 layout(local_size_x = ADAPTIVE_GROUP_X, local_size_y = ADAPTIVE_GROUP_Y) in;
-
-const float kFltMax = 3.402823466e38;
 
 layout(binding = 0, r32f) uniform readonly image2D gDepth;
 layout(binding = 1, rg16_snorm) uniform readonly image2D gNormal;
@@ -120,6 +119,7 @@ void main() {
                        max(vec2(adaptiveRepresentative(uvec2(last - first), parentLevel)), vec2(1.0)),
                    0.0, 1.0);
     float lightMin = 1.0 / 0.0, lightMax = 0.0, lightSum = 0.0, largest = -1.0;
+    vec4 firstDiffuse, firstGlossy;  // parent k = 0, for the reuse below
     for (uint k = 0u; k < 4u; ++k) {
       bvec2 upper = bvec2((k & 1u) != 0u, (k & 2u) != 0u);
       ivec2 parent = mix(first, last, upper);
@@ -128,7 +128,12 @@ void main() {
       Surface p = surfaceAt(adaptiveRepresentative(uvec2(parent), parentLevel));
       if (!sameSurface(s, p)) interpolate = false;
       vec4 d = imageLoad(parentDiffuse, parent);
-      vec3 g = imageLoad(parentGlossy, parent).rgb;
+      vec4 g4 = imageLoad(parentGlossy, parent);
+      vec3 g = g4.rgb;
+      if (k == 0u) {
+        firstDiffuse = d;
+        firstGlossy = g4;
+      }
       // The light the texel would show from this parent: its albedo times the diffuse term.
       float light = luminance(d.rgb * s.albedo) + luminance(g);
       lightMin = min(lightMin, light);
@@ -146,18 +151,15 @@ void main() {
     // An even texel shares its representative pixel with its first parent: when that parent's
     // light was shaded there, it is this texel's light too.
     if (!interpolate && all(equal(texel & 1u, uvec2(0u)))) {
-      vec4 d = imageLoad(parentDiffuse, first);
-      vec4 g = imageLoad(parentGlossy, first);
-      reuse = g.a == 1.0;
-      diffuse = d.rgb;
-      glossy = g.rgb;
-      origin = uint(d.a);
+      reuse = firstGlossy.a == 1.0;
+      diffuse = firstDiffuse.rgb;
+      glossy = firstGlossy.rgb;
+      origin = uint(firstDiffuse.a);
     }
   }
   if (!interpolate && !reuse) {
     // No glossy term where F0 and F90 are 0, as the shading reads them (non-finite = 0).
-    vec4 specular = vec4(s.f0, s.f90);
-    specular = mix(vec4(0.0), specular, lessThanEqual(abs(specular), vec4(kFltMax)));
+    vec4 specular = finiteOr(vec4(s.f0, s.f90), vec4(0.0));
     uint entry = texel.x | (texel.y << ADAPTIVE_PACK_SHIFT);
     if (pc.splitGlossy != 0u && all(equal(specular, vec4(0.0)))) {
       uint index = atomicAdd(plainHead.shaded, 1u);
@@ -180,7 +182,7 @@ void main() {
     imageStore(outLevels, store, vec4(float(origin)));
     // A reused texel skipped the light test that a non-finite albedo fails: such an albedo
     // reads as 0, as in the shading (vsgl_shade.comp; vsgl-math.md section 12, case 14).
-    vec3 albedo = mix(vec3(0.0), s.albedo, lessThanEqual(abs(s.albedo), vec3(kFltMax)));
+    vec3 albedo = finiteOr(s.albedo, vec3(0.0));
     imageStore(outDiffuse, store, vec4(diffuse * albedo, 1.0));
     imageStore(outGlossy, store, vec4(glossy, 1.0));
   } else {

@@ -12,6 +12,7 @@
 #include "shared/vsgl.h"
 #include "shared/vsgl_shade.h"
 #include "common/camera_ray.glsl"
+#include "common/finite_material.glsl"
 #include "common/octahedral.glsl"
 #include "common/sg.glsl"
 
@@ -119,16 +120,10 @@ void main() {
   cameraRay(pc.invViewProjRelative, ndc, origin, direction);
   vec3 view = -direction;
   vec3 normal = octDecode(imageLoad(gNormal, coord).rg);
-  // A host's G-buffer can carry NaN or Inf in a material channel (a broken texture; vsgl-math.md
-  // section 12, case 14): such a channel reads as 0 (albedo, F0, F90) or 1 (roughness), so that the
-  // pixel still gets finite light. The RSM side needs no guard: its attributes pass zeroes
-  // non-finite texels.
-  vec4 diffuseRoughness = imageLoad(gDiffuse, coord);
-  vec4 specular = imageLoad(gSpecular, coord);  // F0, F90
-  // (A NaN fails every comparison, so |x| <= FLT_MAX holds exactly for the finite values.)
-  diffuseRoughness = mix(vec4(0.0, 0.0, 0.0, 1.0), diffuseRoughness,
-                         lessThanEqual(abs(diffuseRoughness), vec4(kSgFltMax)));
-  specular = mix(vec4(0.0), specular, lessThanEqual(abs(specular), vec4(kSgFltMax)));
+  // Non-finite material channels read as 0 or 1 (common/finite_material.glsl). The RSM side
+  // needs no guard: its attributes pass zeroes non-finite texels.
+  vec4 diffuseRoughness = finiteOr(imageLoad(gDiffuse, coord), vec4(0.0, 0.0, 0.0, 1.0));
+  vec4 specular = finiteOr(imageLoad(gSpecular, coord), vec4(0.0));  // F0, F90
   // The same alpha floor as the direct light's BRDF (common/brdf.glsl).
   float alpha = max(diffuseRoughness.a * diffuseRoughness.a, 1e-3);
   const bool glossy = (kFlags & VSGL_SHADE_GLOSSY) != 0u;

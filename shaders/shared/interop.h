@@ -15,11 +15,11 @@ using uint = uint32_t;
 using glm::ivec2;
 using glm::ivec4;
 using glm::mat4;
+using glm::min;
 using glm::uvec2;
 using glm::uvec4;
 using glm::vec2;
 using glm::vec4;
-using glm::min;
 }  // namespace gpu
 #define SHARED_INLINE inline
 #define SHARED_ASSERT_SIZE(type, bytes) static_assert(sizeof(gpu::type) == (bytes), #type " layout")
