@@ -6,6 +6,7 @@
 #include "gi/indirect_lighting.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <optional>
 
 #include "engine/commands.h"
@@ -159,6 +160,7 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
   plan.visibility = s.ismEnabled;
   plan.glossy = s.glossy;
   plan.adaptive = s.adaptive.enabled;
+  plan.culled = s.culling.enabled;
   plan.skySkipped = s.planner.skipSky && !plan.adaptive;  // adaptive shading never queues sky
   if (!s.ismEnabled) {
     plan.reasons.push_back("ism: off in the settings: no ISM build or test");
@@ -183,6 +185,13 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
                            std::to_string(s.adaptive.coarsestLevel) +
                            " down, interpolated where surface, material and light agree; sky "
                            "never shaded");
+  if (s.culling.enabled) {
+    char budget[32];
+    std::snprintf(budget, sizeof(budget), "%g", s.culling.budget);
+    plan.reasons.push_back(
+        std::string("culling: per subgroup, VSGLs whose bounds add up to at most ") + budget +
+        " of the pixels' light are skipped");
+  }
   const float power = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
   if (s.planner.skipWithoutBounce && !(power > 0.0f)) {
     plan.bounce = false;
@@ -196,7 +205,8 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
         "or shading pass; black outputs");
   }
   if (!plan.bounce)
-    plan.visibility = plan.glossy = plan.specularLobes = plan.skySkipped = plan.adaptive = false;
+    plan.visibility = plan.glossy = plan.specularLobes = plan.skySkipped = plan.adaptive =
+        plan.culled = false;
   return plan;
 }
 
@@ -284,17 +294,20 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
     ismPointsStale = false;
     ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
   }
-  const uint32_t flags = (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) |
-                         (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
-                         (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u) |
-                         (plan.specularLobes ? 0u : VSGL_SHADE_DIFFUSE_LOBES);
-  const VsglShade::Inputs shading{vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()};
+  const uint32_t flags =
+      (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) | (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
+      (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u) |
+      (plan.specularLobes ? 0u : VSGL_SHADE_DIFFUSE_LOBES) | (plan.culled ? VSGL_SHADE_CULL : 0u);
+  VsglShade::Inputs shading{vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()};
+  shading.cullBudget = settings.culling.budget;
+  if (plan.culled) shade.recordStatsReset(cmd);
   if (plan.adaptive)
     adaptive.record(cmd, gbuffer, camera, shading, settings.adaptive,
                     plan.glossy && settings.planner.skipGlossyWithoutSpecular, shade, indirect,
                     &profiler);
   else
     shade.record(cmd, gbuffer, camera, shading, indirect, &profiler);
+  if (plan.culled) shade.recordStatsReadback(cmd);
   if (settings.debugVsgl >= 0) {
     if (!debugVisibility) {
       engine::ImageDesc desc;
@@ -429,7 +442,15 @@ Status IndirectLighting::record(VkCommandBuffer cmd, const FrameInput& input, Fr
 }
 
 ShadingCounts IndirectLighting::lastShadingCounts() const {
-  return impl_->plan.adaptive ? impl_->adaptive.lastCounts() : ShadingCounts{};
+  ShadingCounts counts = impl_->plan.adaptive ? impl_->adaptive.lastCounts() : ShadingCounts{};
+  if (impl_->plan.culled) {
+    const gpu::VsglShadeStats stats = impl_->shade.lastStats();
+    for (size_t level = 0; level < counts.vsglTests.size(); ++level) {
+      counts.vsglTests[level] = stats.tested[level];
+      counts.vsglsSkipped[level] = stats.skipped[level];
+    }
+  }
+  return counts;
 }
 
 const FramePlan& IndirectLighting::lastPlan() const {

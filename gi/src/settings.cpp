@@ -69,6 +69,8 @@ std::string validateSettings(const Settings& s) {
                  "is outside [0, 1]");
   if (!(a.f0Tolerance >= 0.0f && a.f0Tolerance <= 1.0f))
     return field("adaptive.f0Tolerance", std::to_string(a.f0Tolerance), "is outside [0, 1]");
+  if (!(s.culling.budget >= 0.0f && s.culling.budget <= 0.5f))
+    return field("culling.budget", std::to_string(s.culling.budget), "is outside [0, 0.5]");
   if (s.debugVsgl < -1 || (s.debugVsgl >= 0 && uint32_t(s.debugVsgl) >= s.vsglCount))
     return field("debugVsgl", std::to_string(s.debugVsgl),
                  ("is neither -1 nor a VSGL index below vsglCount = " + std::to_string(s.vsglCount))

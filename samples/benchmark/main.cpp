@@ -38,6 +38,7 @@ struct Options {
   samples::CommonOptions common;  // --device, --validation, --help
   // Overrides of the preset's sweep (empty / 0: the preset's own).
   std::vector<std::string> scenes;
+  std::vector<std::string> methods;
   std::vector<uint32_t> counts;
   uint32_t width = 0, height = 0;
 };
@@ -50,6 +51,9 @@ const char* usage() {
          "                  (path-traced references)\n"
          "  --scenes LIST   comma-separated scenes (built-in names or .gltf/.glb files) instead\n"
          "                  of the preset's\n"
+         "  --methods LIST  comma-separated methods instead of the preset's: tok15, modified,\n"
+         "                  modified-full, modified-culled, modified-full-culled, kmeans-2d,\n"
+         "                  kmeans-3d\n"
          "  --counts LIST   comma-separated VSGL counts, 1..65535, instead of the preset's\n"
          "  --width N --height N  image size, 1..8192, instead of the preset's (the path-traced\n"
          "                  reference's cost grows with the pixel count)\n"
@@ -67,7 +71,15 @@ Options parseOptions(int argc, char** argv) {
       o.outDir = args.value();
     else if (arg == "--scenes")
       o.scenes = samples::parseList(arg, args.value());
-    else if (arg == "--counts")
+    else if (arg == "--methods") {
+      o.methods = samples::parseList(arg, args.value());
+      for (const std::string& m : o.methods)
+        if (std::find(bench::methods().begin(), bench::methods().end(), m) ==
+            bench::methods().end())
+          throw engine::Error("--methods: '" + m +
+                              "' is not one of tok15, modified, modified-full, modified-culled, "
+                              "modified-full-culled, kmeans-2d, kmeans-3d");
+    } else if (arg == "--counts")
       o.counts = samples::parseUintList(arg, args.value(), 1, 65535);
     else if (arg == "--width")
       o.width = samples::parseUint(arg, args.value(), 1, 8192);
@@ -100,7 +112,9 @@ gi::Settings settingsFor(const bench::Preset& p, const std::string& method, uint
   s.brsm.gridSize = std::min(s.brsm.gridSize, p.rsmSize);
   if (method == "tok15") s.rule = gi::KernelRule::Tok15;
   // The module's method with every pixel shaded: what adaptive shading saves, and costs.
-  if (method == "modified-full") s.adaptive.enabled = false;
+  if (method == "modified-full" || method == "modified-full-culled") s.adaptive.enabled = false;
+  // VSGL culling on: what it saves, and the light it loses.
+  if (method == "modified-culled" || method == "modified-full-culled") s.culling.enabled = true;
   if (method == "kmeans-2d") s.method = gi::VsglMethod::KmeansImage;
   if (method == "kmeans-3d") s.method = gi::VsglMethod::KmeansWorld;
   if (std::string bad = gi::validateSettings(s); !bad.empty()) throw engine::Error(bad);
@@ -236,16 +250,23 @@ std::vector<json> runRows(engine::Context& ctx, const bench::Preset& p, SceneRun
                       {"interpolated", c.interpolated},
                       {"reused", c.reused},
                       {"pixels_from", c.pixelsFrom},
-                      {"sky_pixels", c.skyPixels}}},
+                      {"sky_pixels", c.skyPixels},
+                      {"vsgl_tests", c.vsglTests},
+                      {"vsgls_skipped", c.vsglsSkipped}}},
                     {"peak_resident_mb", peakResidentMegabytes()}});
   }
-  // Adaptive rows against the row of the same frame shaded at every pixel, when it is here.
+  // Adaptive rows against the row of the same frame shaded at every pixel, and culled rows
+  // against the same shading without culling, when they are here.
   for (size_t i = 0; i < settings.size(); ++i)
-    for (size_t j = 0; j < settings.size(); ++j)
-      if (settings[i].adaptive.enabled && !settings[j].adaptive.enabled &&
-          sameVsgls(settings[i], settings[j]))
+    for (size_t j = 0; j < settings.size(); ++j) {
+      if (!sameVsgls(settings[i], settings[j])) continue;
+      const gi::Settings &a = settings[i], &b = settings[j];
+      if (a.adaptive.enabled && !b.adaptive.enabled && a.culling.enabled == b.culling.enabled)
         rows[i]["error_against_full_shading"] =
             engine::compareImages(images[i], images[j]).relativeMse;
+      if (a.culling.enabled && !b.culling.enabled && a.adaptive.enabled == b.adaptive.enabled)
+        rows[i]["error_against_unculled"] = engine::compareImages(images[i], images[j]).relativeMse;
+    }
   return rows;
 }
 
@@ -275,6 +296,7 @@ int run(const Options& o) {
   }
   bench::Preset p = bench::preset(o.preset);
   if (!o.scenes.empty()) p.scenes = o.scenes;
+  if (!o.methods.empty()) p.methods = o.methods;
   if (!o.counts.empty()) p.counts = o.counts;
   if (o.width) p.width = o.width;
   if (o.height) p.height = o.height;

@@ -162,6 +162,29 @@ std::string adaptiveTable(const json& targets) {
   return t;
 }
 
+// VSGL culling against the same shading without it: over adaptive shading (modified-culled) and
+// at full rate (modified-full-culled).
+std::string cullingTable(const json& targets) {
+  std::string t =
+      "| scene | N | shading | frame speed-up | shading speed-up | VSGLs skipped | relMSE rise | "
+      "relMSE against unculled |\n|---|---|---|---|---|---|---|---|\n";
+  for (const json& g : targets)
+    for (const std::string key : {"culling", "full_culling"}) {
+      if (!g.contains(key + "_frame_speedup")) continue;
+      t += format(
+          "| %s | %u | %s | %.3f× | %.3f× | %.1f %% | %+.2f %% | %s |\n",
+          g["scene"].get<std::string>().c_str(), g["count"].get<uint32_t>(),
+          key == "culling" ? "adaptive" : "full rate", g[key + "_frame_speedup"].get<double>(),
+          g[key + "_shading_speedup"].get<double>(),
+          100.0 * g[key + "_skipped_fraction"].get<double>(),
+          100.0 * g[key + "_relative_mse_rise"].get<double>(),
+          g.contains(key + "_relative_mse_against_unculled")
+              ? format("%.2g", g[key + "_relative_mse_against_unculled"].get<double>()).c_str()
+              : "—");
+    }
+  return t;
+}
+
 }  // namespace
 
 std::string markdownTables(const json& machine, const json& targets, const json& fronts,
@@ -188,6 +211,7 @@ std::string markdownTables(const json& machine, const json& targets, const json&
   }
   md += "\n### Targets (K = 1)\n\n" + targetsTable(targets);
   md += "\n### Adaptive shading (modified FIS, K = 1)\n\n" + adaptiveTable(targets);
+  md += "\n### VSGL culling (modified FIS, K = 1)\n\n" + cullingTable(targets);
   return md;
 }
 

@@ -11,7 +11,7 @@ namespace bench {
 struct Preset {
   std::string name;
   std::vector<std::string> scenes;
-  // vsgl_render --method names, and modified-full: modified FIS with adaptive shading off
+  // Names of methods(): vsgl_render's --method names and variants of modified FIS
   std::vector<std::string> methods;
   std::vector<uint32_t> counts;     // VSGLs N
   std::vector<float> kernelScales;  // K (filtered methods only; k-means has none)
@@ -26,6 +26,11 @@ struct Preset {
   // both programs key the same reference in a shared cache.
   float referenceNoise = 0.03f;
 };
+
+// Every method a row can run: vsgl_render's --method names (tok15, modified, kmeans-2d,
+// kmeans-3d) and variants of modified FIS: modified-full (adaptive shading off, every pixel
+// shaded), modified-culled and modified-full-culled (VSGL culling on).
+const std::vector<std::string>& methods();
 
 // "ci" (a smoke run, well under 2 minutes), "default" or "paper"; throws engine::Error naming
 // the known presets otherwise.

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "engine/error.h"
@@ -110,6 +111,27 @@ json targets(const json& machine, const json& rows) {
       t["light_from_level"] = from;
       if (r.contains("error_against_full_shading"))
         t["adaptive_relative_mse_against_full"] = r["error_against_full_shading"];
+    }
+    // VSGL culling over the same shading, adaptive and at full rate, when their rows are here.
+    const std::tuple<const json*, const char*, std::string> cullings[] = {
+        {&r, "modified-culled", "culling"}, {full, "modified-full-culled", "full_culling"}};
+    for (const auto& [base, name, key] : cullings) {
+      const json* culled = find(scene, name, n);
+      if (!base || !culled || passMedian(*culled, "frame") <= 0.0) continue;
+      const json& c = (*culled)["shading_counts"];
+      double tests = 0.0, skipped = 0.0;
+      for (const json& level : c["vsgl_tests"]) tests += level.get<double>();
+      for (const json& level : c["vsgls_skipped"]) skipped += level.get<double>();
+      t[key + "_frame_ms"] = passMedian(*culled, "frame");
+      t[key + "_frame_speedup"] = passMedian(*base, "frame") / passMedian(*culled, "frame");
+      t[key + "_shading_speedup"] =
+          passMedian(*base, "vsgl shading") / passMedian(*culled, "vsgl shading");
+      t[key + "_skipped_fraction"] = tests > 0.0 ? skipped / tests : 0.0;
+      t[key + "_relative_mse_rise"] = (*culled)["error"]["relative_mse"].get<double>() /
+                                          (*base)["error"]["relative_mse"].get<double>() -
+                                      1.0;
+      if (culled->contains("error_against_unculled"))
+        t[key + "_relative_mse_against_unculled"] = (*culled)["error_against_unculled"];
     }
     if (const json* tok15 = find(scene, "tok15", n); tok15 && generationMs(*tok15) > 0.0)
       t["modified_over_tok15_generation"] = modified / generationMs(*tok15);

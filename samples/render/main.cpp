@@ -125,6 +125,17 @@ int run(const render::Options& o) {
           100.0 * counts.pixelsFrom[level] / std::max(surface, 1u));
     std::printf("\n");
   }
+  if (indirect && indirect->lastPlan().culled) {
+    uint64_t tests = 0, skipped = 0;
+    for (uint32_t level = 0; level < counts.vsglTests.size(); ++level) {
+      tests += counts.vsglTests[level];
+      skipped += counts.vsglsSkipped[level];
+    }
+    std::printf(
+        "vsgl culling: %llu of %llu subgroup x VSGL tests skipped (%.1f %%)\n",
+        static_cast<unsigned long long>(skipped), static_cast<unsigned long long>(tests),
+        100.0 * static_cast<double>(skipped) / static_cast<double>(std::max<uint64_t>(tests, 1)));
+  }
   // The machine's FMA and memory peaks in the same run, to read the pass times against
   // (benchmarks report fractions of them; absolute times on a shared machine drift).
   const engine::FmaPeak peak = engine::measureFmaPeak(ctx);

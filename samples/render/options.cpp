@@ -53,6 +53,11 @@ const char* usage() {
          "  --adaptive-level L   its coarsest level, 0..3: one shaded pixel in 2^L x 2^L (default "
          "2)\n"
          "  --adaptive-tolerance T  light spread allowed for interpolation, 0..10 (default 0.2)\n"
+         "  --culling on|off     skip VSGLs whose bounds stay within a budget of the light "
+         "(default "
+         "off;\n"
+         "                       docs/techniques/vsgl-culling.md)\n"
+         "  --culling-budget T   that budget, the light a pixel may lose, 0..0.5 (default 0.01)\n"
          "  --debug-vsgl N       VSGL whose visibility is drawn (default: the most powerful)\n";
 }
 
@@ -142,6 +147,10 @@ Options parseOptions(int argc, char** argv) {
       o.gi.adaptive.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--adaptive-level")
       o.gi.adaptive.coarsestLevel = parseUint(arg, args.value(), 0, 3);
+    else if (arg == "--culling")
+      o.gi.culling.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
+    else if (arg == "--culling-budget")
+      o.gi.culling.budget = parseFloat(arg, args.value(), 0.0f, 0.5f);
     else if (arg == "--adaptive-tolerance")
       o.gi.adaptive.lightTolerance = parseFloat(arg, args.value(), 0.0f, 10.0f);
     else if (arg == "--debug-vsgl")

@@ -6,7 +6,9 @@
 // (common/sg_lighting.glsl), and V_k the imperfect-shadow-map test of common/ism_lookup.glsl.
 // The CPU twin is gi/src/reference/vsgl_shade_reference.cpp.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_vote : require
 
 #include "shared/adaptive_shading.h"
 #include "shared/vsgl.h"
@@ -32,11 +34,14 @@ layout(std430, binding = 9) readonly buffer Queue {
   AdaptiveQueueHeader head;
   uint entries[];
 };
+// VSGL_SHADE_CULL: subgroup x VSGL tests and skips per level (VsglShadeStats).
+layout(std430, binding = 10) buffer Stats { VsglShadeStats stats; };
 layout(push_constant) uniform Push { VsglShadePush pc; };
 layout(constant_id = 0) const uint kFlags = VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY;
 
 #include "common/ism_lookup.glsl"
 #include "common/sg_lighting.glsl"
+#include "common/vsgl_bound.glsl"
 
 // Per-lobe constants, computed once by the lane that loads the VSGL. rgb = power / its largest
 // component (the lobe's colour), a = log(largest component / (2 pi S(sharpness))), the scale of
@@ -74,6 +79,40 @@ IsmFrame broadcastFrame(IsmFrame f, uint lane) {
   b.axis = subgroupBroadcast(f.axis, lane);
   b.lit = subgroupBroadcast(f.lit, lane);
   return b;
+}
+
+float largestChannel(vec3 c) {
+  return max(c.r, max(c.g, c.b));
+}
+
+// The receivers of the subgroup's shaded lanes, as the culling bound sees them: the box of
+// their positions, the cone of their normals and the extremes of their materials and views.
+// `f0` and `f90` are 0 without the glossy term.
+VsglReceivers subgroupReceivers(bool shaded, vec3 position, vec3 normal, vec3 view,
+                                float albedo, vec3 f0, float f90, float alpha) {
+  const float kHuge = 3.0e38;
+  vec3 lo = subgroupMin(shaded ? position : vec3(kHuge));
+  vec3 hi = subgroupMax(shaded ? position : vec3(-kHuge));
+  VsglReceivers r;
+  r.centre = 0.5 * (lo + hi);
+  // The half-diagonal of the box, widened by 1e-4 of itself and of |centre| for the rounding
+  // of the centre.
+  r.radius = 0.5 * length(hi - lo) * 1.0001 + 1e-4 * length(r.centre);
+  vec3 sum = subgroupAdd(shaded ? normal : vec3(0.0));
+  float length2 = dot(sum, sum);
+  r.normalAxis = length2 > 0.0 ? sum * inversesqrt(length2) : vec3(0.0, 0.0, 1.0);
+  float cosine = subgroupMin(shaded ? dot(normal, r.normalAxis) : 1.0);
+  // Opposed normals sum to about 0: no cone.
+  r.normalAngle = length2 > 1e-6 ? min(acos(clamp(cosine, -1.0, 1.0)) + 1e-4, kSgPi) : kSgPi;
+  float nv = max(dot(normal, view), kSgGgxMinViewCosine);
+  vec2 table = ggxSpecularAlbedo(nv, alpha);
+  float specularAlbedo = largestChannel(f90 * table.x + f0 * (table.y - table.x));
+  r.albedo = subgroupMax(shaded ? albedo : 0.0);
+  r.fresnel = subgroupMax(shaded ? max(largestChannel(f0), f90) : 0.0);
+  r.alpha = subgroupMin(shaded ? alpha : 1.0);
+  r.viewCosine = subgroupMin(shaded ? nv : 1.0);
+  r.specularAlbedo = subgroupMax(shaded ? specularAlbedo : 0.0);
+  return r;
 }
 
 // Adds one lobe's indirect light, times the VSGL's visibility, to the pixel's sums.
@@ -147,13 +186,52 @@ void main() {
   // them (all of gl_SubgroupSize unless the subgroup is partial). Measured on lavapipe against a
   // tile of VSGLs in shared memory: 15 % faster shading (memory loads there are per lane).
   uint lanes = subgroupBallotBitCount(subgroupBallot(true));
+  // VSGL culling (docs/techniques/vsgl-culling.md): the subgroup is the tile. Per block each
+  // lane bounds its VSGL over the subgroup's receivers (common/vsgl_bound.glsl), and VSGLs are
+  // skipped in order while their bounds add up to at most pc.eye.w (tau) of the least light
+  // any lane has gathered so far: each pixel loses at most tau of its light. The skip shortens
+  // the loop below itself (lavapipe runs both sides of a branch).
+  const bool culled = (kFlags & VSGL_SHADE_CULL) != 0u;
+  VsglReceivers group;
+  if (culled) {
+    float albedo = modulate ? max(largestChannel(diffuseRoughness.rgb), 0.0) : 1.0;
+    vec4 fresnel = glossy ? specular : vec4(0.0);
+    group = subgroupReceivers(shaded, receiver, normal, view, albedo, fresnel.rgb, fresnel.a, alpha);
+  }
+  float skippedBound = 0.0;  // the bounds of the VSGLs skipped so far
+  uint tested = 0u, skipped = 0u;
   for (uint first = 0u; first < pc.vsglCount; first += lanes) {
     uint count = min(lanes, pc.vsglCount - first);
     Vsgl mine = vsgls[first + min(gl_SubgroupInvocationID, count - 1u)];
     ShadeLobe myDiffuse = shadeLobe(mine.diffuse);
     ShadeLobe mySpecular = shadeLobe(mine.specular);
     IsmFrame myFrame = ismFrame(mine, pc.ism.centreOffset);
-    for (uint j = 0u; j < count; ++j) {
+    bool valid = gl_SubgroupInvocationID < count;
+    uvec4 keep = subgroupBallot(valid);
+    if (culled) {
+      vec3 light = (modulate ? diffuseSum * diffuseRoughness.rgb : diffuseSum) + glossySum;
+      float budget = pc.eye.w * subgroupMin(shaded ? largestChannel(light) : 3.0e38) - skippedBound;
+      vec2 bound = vsglLobeBound(myDiffuse.meanVariance.xyz, myDiffuse.meanVariance.w,
+                                 myDiffuse.axisSharpness.xyz, myDiffuse.axisSharpness.w,
+                                 myDiffuse.colourLogScale.a, group);
+      if ((kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u)
+        bound += vsglLobeBound(mySpecular.meanVariance.xyz, mySpecular.meanVariance.w,
+                               mySpecular.axisSharpness.xyz, mySpecular.axisSharpness.w,
+                               mySpecular.colourLogScale.a, group);
+      float total = bound.x + bound.y;
+      // Lanes in order: a candidate is skipped while the running sum stays within the budget
+      // (NaN or +inf bounds never are).
+      bool candidate = valid && total <= budget;
+      float prefix = subgroupInclusiveAdd(candidate ? total : 0.0);
+      bool skip = candidate && prefix <= budget;
+      skippedBound += subgroupMax(skip ? prefix : 0.0);
+      keep = subgroupBallot(valid && !skip);
+      tested += count;
+      skipped += subgroupBallotBitCount(subgroupBallot(skip));
+    }
+    while (any(notEqual(keep, uvec4(0u)))) {
+      uint j = subgroupBallotFindLSB(keep);
+      keep[j >> 5u] &= ~(1u << (j & 31u));
       ShadeLobe diffuseLobe = broadcastLobe(myDiffuse, j);
       ShadeLobe specularLobe = broadcastLobe(mySpecular, j);
       IsmFrame frame = broadcastFrame(myFrame, j);
@@ -165,6 +243,11 @@ void main() {
       if ((kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u)
         addLobe(specularLobe, visibility, receiver, normal, glossy, ggx, diffuseSum, glossySum);
     }
+  }
+  bool counted = culled && subgroupAny(shaded);
+  if (counted && subgroupElect()) {
+    atomicAdd(stats.tested[pc.level], tested);
+    atomicAdd(stats.skipped[pc.level], skipped);
   }
   if (inside) {
     vec3 diffuse = modulate ? diffuseSum * diffuseRoughness.rgb : diffuseSum;

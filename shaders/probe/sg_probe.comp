@@ -14,6 +14,7 @@ layout(std430, binding = 2) readonly buffer SgGgxAlbedoTable { vec2 kSgGgxAlbedo
 layout(push_constant) uniform Push { SgProbePush pc; };
 
 #include "common/sg_lighting.glsl"
+#include "common/vsgl_bound.glsl"
 #include "common/vsgl_lobes.glsl"
 
 void main() {
@@ -51,6 +52,9 @@ void main() {
     float sharpness;
     vplSpecularLobe(p.a.xyz, p.b.xyz, p.a.w, axis, sharpness);
     x = vec4(axis, sharpness);
+  } else if (p.function == SG_PROBE_VSGL_BOUND) {
+    VsglReceivers r = VsglReceivers(p.c.xyz, p.c.w, p.d.xyz, p.d.w, p.e.y, p.e.z, p.e.w, p.f.x, p.f.y);
+    x.xy = vsglLobeBound(p.a.xyz, p.a.w, p.b.xyz, p.b.w, p.e.x, r);
   }
   results[i] = SgProbeResult(x, y);
 }

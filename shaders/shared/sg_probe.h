@@ -19,6 +19,10 @@
 //                    -> x = (axis, sharpness), y.x = log amplitude
 //   GGX_REFLECTION   a = (light axis, lambda), b = (normal, alpha), c = (view, f0) -> x.xyz
 //   VPL_SPECULAR     a = (normal, roughness), b.xyz = to light -> x = (axis, sharpness)
+//   VSGL_BOUND       a = (mean, variance), b = (axis, sharpness), c = (centre, radius),
+//                    d = (normal axis, normal angle), e = (log scale, albedo, fresnel, alpha),
+//                    f.xy = (view cosine, specular albedo)
+//                    -> x.xy = (diffuse, glossy) bounds (common/vsgl_bound.glsl)
 #define SG_PROBE_EM1X 0u
 #define SG_PROBE_INTEGRAL 1u
 #define SG_PROBE_PRODUCT 2u
@@ -28,6 +32,7 @@
 #define SG_PROBE_VSGL_RADIANCE 6u
 #define SG_PROBE_GGX_REFLECTION 7u
 #define SG_PROBE_VPL_SPECULAR 8u
+#define SG_PROBE_VSGL_BOUND 9u
 
 SHARED_BEGIN
 
@@ -35,6 +40,9 @@ struct SgProbeCase {
   vec4 a;
   vec4 b;
   vec4 c;
+  vec4 d;
+  vec4 e;
+  vec4 f;
   uint function;
   uint pad0, pad1, pad2;
 };
@@ -51,8 +59,8 @@ struct SgProbePush {
 
 SHARED_END
 
-SHARED_ASSERT_SIZE(SgProbeCase, 64);
-SHARED_ASSERT_OFFSET(SgProbeCase, function, 48);
+SHARED_ASSERT_SIZE(SgProbeCase, 112);
+SHARED_ASSERT_OFFSET(SgProbeCase, function, 96);
 SHARED_ASSERT_SIZE(SgProbeResult, 32);
 SHARED_ASSERT_SIZE(SgProbePush, 16);
 #endif

@@ -20,7 +20,11 @@
 // The VSGLs' specular lobes are left out: they carry no power (no surface has a specular lobe,
 // the effect planner's SceneGeometry::maxSpecular = 0), so they would add exactly 0.
 #define VSGL_SHADE_DIFFUSE_LOBES 16u
-#define VSGL_SHADE_VARIANTS 32u  // every combination of the flags
+// VSGL culling (docs/techniques/vsgl-culling.md): per subgroup, VSGLs whose bound adds up to at
+// most VsglShadePush::eye.w of the least light gathered so far are skipped; counts in
+// VsglShadeStats.
+#define VSGL_SHADE_CULL 32u
+#define VSGL_SHADE_VARIANTS 64u  // every combination of the flags
 // Incoming-radiance log amplitudes are clamped here before exp(): e^80 ~ 5.5e34 keeps a
 // receiver touching a zero-variance lobe finite (vsgl-math.md section 12, case 12) and, unlike
 // +inf, never turns into NaN when multiplied by a zero lighting integral.
@@ -30,7 +34,9 @@ SHARED_BEGIN
 
 struct VsglShadePush {
   mat4 invViewProjRelative;  // camera NDC -> offset from `eye` (engine::relativeUnprojection)
-  vec4 eye;                  // xyz: the camera's position, world
+  // xyz: the camera's position, world. w: VSGL_SHADE_CULL's budget tau, the fraction of a
+  // pixel's light that the skipped VSGLs may bound.
+  vec4 eye;
   uvec2 viewport;
   uint vsglCount;
   IsmParams ism;  // the atlas's layout and biases (read with VSGL_SHADE_VISIBILITY)
@@ -39,7 +45,15 @@ struct VsglShadePush {
   uint level;
 };
 
+// VSGL_SHADE_CULL's counts, per level (0 = full rate): subgroup x VSGL tests, and of those the
+// VSGLs skipped. Zeroed by the host before the frame's first shading pass.
+struct VsglShadeStats {
+  uint tested[4];
+  uint skipped[4];
+};
+
 SHARED_END
 
 SHARED_ASSERT_SIZE(VsglShadePush, 128);
+SHARED_ASSERT_SIZE(VsglShadeStats, 32);
 #endif

@@ -4,6 +4,7 @@
 // and checks the layouts and outputs it gets back, under the validation layer (the fixture fails
 // the test on any validation message). Only gi/include and the engine (the "host") are used.
 #include <cmath>
+#include <limits>
 
 #include "engine/builtin_scenes.h"
 #include "engine/commands.h"
@@ -222,6 +223,11 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   settings.adaptive.lightTolerance = -1.0f;
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
   EXPECT_EQ(status.message.rfind("Settings.adaptive.lightTolerance: -1", 0), 0u) << status.message;
+  settings = smallSettings();
+  settings.culling.budget = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message.rfind("Settings.culling.budget: nan is outside [0, 0.5]", 0), 0u)
+      << status.message;
 
   settings = smallSettings();
   auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
@@ -259,6 +265,9 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   EXPECT_TRUE(lighting->setSettings(next));
   next.adaptive.enabled = true;
   next.adaptive.coarsestLevel = 3;
+  EXPECT_TRUE(lighting->setSettings(next));
+  next.culling.enabled = true;  // VSGL culling is per frame too
+  next.culling.budget = 0.2f;
   EXPECT_TRUE(lighting->setSettings(next));
   next.rsmSize = 128;
   EXPECT_FALSE(lighting->setSettings(next));
@@ -486,6 +495,53 @@ TEST_F(IndirectLightingApiTest, AdaptiveShadingStaysCloseToFullShading) {
               shaded, surface, e.relativeMse);
   EXPECT_EQ(e.nonFinite, 0u);
   EXPECT_LE(e.relativeMse, 8e-4);
+}
+
+// VSGL culling through the API, at full rate and over adaptive shading: the plan says so, the
+// counts come back (one test per VSGL per subgroup that sees a surface, at the levels shaded),
+// and the image stays within the budget of the unculled one. At full rate each pixel keeps all
+// but tau = 0.05 of its light (VsglShadeTest.CullingLosesAtMostItsBudget checks that per pixel),
+// so relMSE <= tau^2 = 2.5e-3 there; over adaptive shading the decisions may flip where the
+// lost light moves a texel across the light tolerance, so the bound is adaptive shading's own
+// 8e-4 plus that.
+TEST_F(IndirectLightingApiTest, CullingStaysWithinItsBudget) {
+  for (bool adaptive : {false, true}) {
+    SCOPED_TRACE(adaptive ? "adaptive" : "full rate");
+    std::vector<glm::dvec3> images[2];
+    gi::ShadingCounts counts;
+    for (bool culled : {false, true}) {
+      gi::Settings settings = smallSettings();
+      settings.adaptive.enabled = adaptive;
+      settings.culling.enabled = culled;
+      settings.culling.budget = 0.05f;
+      Frame f = shadeFrame(settings);
+      ASSERT_TRUE(f.lighting);
+      EXPECT_EQ(f.lighting->lastPlan().culled, culled);
+      for (size_t i = 0; i < f.diffuse.size(); ++i)
+        images[culled].push_back(glm::dvec3(f.diffuse[i]) + glm::dvec3(f.glossy[i]));
+      counts = f.lighting->lastShadingCounts();
+      if (!culled) {
+        EXPECT_EQ(counts.vsglTests[0], 0u);
+      }
+    }
+    uint64_t tests = 0, skipped = 0;
+    for (uint32_t level = 0; level < 4; ++level) {
+      EXPECT_EQ(counts.vsglTests[level] % smallSettings().vsglCount, 0u);
+      EXPECT_LE(counts.vsglsSkipped[level], counts.vsglTests[level]);
+      if (!adaptive && level > 0) EXPECT_EQ(counts.vsglTests[level], 0u);
+      tests += counts.vsglTests[level];
+      skipped += counts.vsglsSkipped[level];
+    }
+    EXPECT_GT(tests, 0u);
+    const engine::ErrorMetrics e = engine::compareImages(images[1], images[0]);
+    std::printf(
+        "culling (%s): %llu of %llu subgroup x VSGL tests skipped; relMSE against "
+        "unculled %.3g\n",
+        adaptive ? "adaptive" : "full rate", static_cast<unsigned long long>(skipped),
+        static_cast<unsigned long long>(tests), e.relativeMse);
+    EXPECT_EQ(e.nonFinite, 0u);
+    EXPECT_LE(e.relativeMse, adaptive ? 8e-4 + 2.5e-3 : 2.5e-3);
+  }
 }
 
 // vsgl-math.md section 12, case 6, for the whole module: the Cornell box, its light and its camera

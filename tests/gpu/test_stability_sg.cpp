@@ -21,6 +21,7 @@
 #include "engine/program.h"
 #include "gpu_fixture.h"
 #include "reference/sg_math.h"
+#include "reference/vsgl_bound.h"
 #include "reference/vsgl_sampling.h"
 #include "shared/sg_probe.h"
 #include "shared/vsgl.h"
@@ -360,6 +361,69 @@ TEST_F(StabilitySg, VplSpecularLobeAtGrazingLightAndRoughnessExtremes) {
     const double wh = glm::length(glm::dvec3(glm::vec3(cases[i].b)) + ref.axis) / 2.0;
     expectNear(r[i].x.w, ref.sharpness, kChain + 8.0 * std::ldexp(1.0, -24) / wh, 0.0,
                what + ": sharpness");
+  }
+}
+
+// The culling bound (common/vsgl_bound.glsl) against its double twin (reference/vsgl_bound.h)
+// on its hard inputs: zero variance, a group around the mean (the spot covers every
+// direction), a point group (radius 0), isotropic and 2^41-sharp emission, mirror-like and
+// grazing receivers, no glossy term. Tolerance 3e-3 relative plus 1e-30: the cone angles come
+// from acos and asin, which lavapipe evaluates to about 5e-5 rad, and exp(lambda (cos - 1))
+// turns an angle error d into lambda sin(theta) d of relative error (measured: 1.3e-3 for the
+// case with lambda = 40 at 34 degrees, i.e. d = 6e-5). The bounds' 1e-3 rad margin, on both
+// sides, keeps the fp32 bound conservative all the same. The cases whose emission is neither 1
+// nor 0 keep lambda <= 40; a 2^41-sharp lobe facing away is 0 on both sides.
+TEST_F(StabilitySg, VsglBoundMatchesItsTwin) {
+  struct Case {
+    glm::vec4 meanVariance, axisSharpness, centreRadius, normalCone, material, view;
+  };
+  const float pi = 3.14159265f;
+  // clang-format off
+  std::vector<Case> cases = {
+      // mean, variance | axis, sharpness | centre, radius | normal axis, angle |
+      // power, albedo, fresnel, alpha | n.v, specular albedo
+      {{0, 1, 0, 1e-3f}, {0, -1, 0, 2.2925f}, {0, 0, 0, 0.05f}, {0, 1, 0, 0.2f}, {1, 0.8f, 1, 0.25f}, {0.7f, 0.1f, 0, 0}},
+      {{0, 1, 0, 0.0f}, {0, -1, 0, 2.2925f}, {0, 0, 0, 0.05f}, {0, 1, 0, 0.2f}, {1, 0.8f, 1, 0.25f}, {0.7f, 0.1f, 0, 0}},
+      {{0, 0.01f, 0, 1e-2f}, {1, 0, 0, 0.0f}, {0, 0, 0, 0.05f}, {0, 1, 0, 0.0f}, {2, 0.5f, 0.5f, 1e-3f}, {1e-4f, 0.5f, 0, 0}},
+      {{0, 3, 1, 1e-4f}, {0, -0.6f, -0.8f, 40.0f}, {0, 0, 0, 0.0f}, {0, 1, 0, 0.0f}, {1, 1, 1, 0.1f}, {0.2f, 0.9f, 0, 0}},
+      {{0, 3, 1, 1e-4f}, {0, 0.6f, 0.8f, 2.0e12f}, {0, 0, 0, 0.3f}, {0, 1, 0, 0.5f}, {1, 1, 1, 0.1f}, {0.2f, 0.9f, 0, 0}},
+      {{5, -2, 0, 0.5f}, {-1, 0, 0, 5.0f}, {0, 0, 0, 0.2f}, {0, 1, 0, 1.0f}, {3, 0.3f, 0, 1.0f}, {1.0f, 0.0f, 0, 0}},
+      {{0, 2, 0, 1e-6f}, {0, -1, 0, 2.2925f}, {0, 0, 0, 0.1f}, {0, 1, 0, pi}, {1, 1, 0.04f, 0.5f}, {0.5f, 0.05f, 0, 0}},
+  };
+  // clang-format on
+  std::vector<gpu::SgProbeCase> probes;
+  for (const Case& c : cases) {
+    gpu::SgProbeCase p = probe(
+        SG_PROBE_VSGL_BOUND, c.meanVariance,
+        glm::vec4(glm::normalize(glm::vec3(c.axisSharpness)), c.axisSharpness.w), c.centreRadius);
+    p.d = glm::vec4(glm::normalize(glm::vec3(c.normalCone)), c.normalCone.w);
+    // The shader's per-lobe constant log(P / (2 pi S(lambda))), in double.
+    const double logScale = std::log(double(c.material.x)) - std::log(2.0 * kPi) -
+                            std::log(gi::sgIntegral(c.axisSharpness.w));
+    p.e = glm::vec4(float(logScale), c.material.y, c.material.z, c.material.w);
+    p.f = glm::vec4(c.view.x, c.view.y, 0.0f, 0.0f);
+    probes.push_back(p);
+  }
+  const std::vector<gpu::SgProbeResult> results = run(probes);
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    gpu::VsglLobe lobe{};
+    lobe.meanVariance = c.meanVariance;
+    lobe.axisSharpness = probes[i].b;
+    lobe.power = glm::vec4(glm::vec3(c.material.x), c.material.x);
+    gi::VsglReceivers group;
+    group.centre = glm::dvec3(c.centreRadius);
+    group.radius = c.centreRadius.w;
+    group.normalAxis = glm::dvec3(glm::vec3(probes[i].d));
+    group.normalAngle = c.normalCone.w;
+    group.albedo = c.material.y;
+    group.fresnel = c.material.z;
+    group.alpha = c.material.w;
+    group.viewCosine = c.view.x;
+    group.specularAlbedo = c.view.y;
+    const gi::VsglLobeBound want = gi::vsglLobeBound(lobe, group);
+    expectNear(results[i].x.x, want.diffuse, 3e-3, 1e-30, "case " + std::to_string(i) + " diffuse");
+    expectNear(results[i].x.y, want.glossy, 3e-3, 1e-30, "case " + std::to_string(i) + " glossy");
   }
 }
 

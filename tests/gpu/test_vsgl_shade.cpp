@@ -2,6 +2,7 @@
 // on a real G-buffer, with VSGLs that include the hard cases of vsgl-math.md section 12 (zero
 // variance, zero sharpness, a lobe without power, a receiver at a lobe's mean, huge power);
 // and the far-field limit: a VSGL with a tiny variance far away shades like a point light.
+// VSGL culling loses no more light than its budget.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -43,8 +44,10 @@ class VsglShadeTest : public testing_gpu::GpuTest {
 
   // Shades the G-buffer with `vsgls`; their ISMs are built from the scene first (read with
   // VSGL_SHADE_VISIBILITY, bound either way), and `atlas` receives them as tile-major distances.
+  // With VSGL_SHADE_CULL, `cullBudget` is tau and `stats` receives the pass's counts.
   Shaded shade(const std::vector<gpu::Vsgl>& vsgls, uint32_t flags,
-               std::vector<double>* atlas = nullptr) {
+               std::vector<double>* atlas = nullptr, float cullBudget = 0.0f,
+               gpu::VsglShadeStats* stats = nullptr) {
     const auto count = static_cast<uint32_t>(vsgls.size());
     engine::Buffer buffer(ctx(), vsgls.size() * sizeof(gpu::Vsgl),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload);
@@ -56,8 +59,13 @@ class VsglShadeTest : public testing_gpu::GpuTest {
       ism.recordPoints(cmd, *gpuScene_);
       ism.recordBuild(cmd, *gpuScene_, buffer, count);
       engine::computeBarrier(cmd);
-      pass.record(cmd, *gbuffer_, view_, {&buffer, count, flags, &ism.atlas(), ism.params()}, out);
+      gi::VsglShade::Inputs in{&buffer, count, flags, &ism.atlas(), ism.params()};
+      in.cullBudget = cullBudget;
+      pass.recordStatsReset(cmd);
+      pass.record(cmd, *gbuffer_, view_, in, out);
+      pass.recordStatsReadback(cmd);
     });
+    if (stats) *stats = pass.lastStats();
     if (atlas) {
       params_ = ism.params();
       const auto bytes = ism.atlas().readback(ctx(), 0);
@@ -353,3 +361,65 @@ TEST_F(VsglShadeTest, NonFiniteMaterialGivesFiniteLight) {
 }
 
 }  // namespace
+
+// VSGL culling (VSGL_SHADE_CULL) against the same shading without it, with the hard-case VSGLs
+// and 64 faint ones around the box: every pixel keeps all but at most tau of its light, in
+// each channel relative to its largest channel, because the skipped VSGLs' bounds add up to at
+// most tau of the least light in the subgroup (the bound is conservative:
+// tests/unit/test_vsgl_bound.cpp). Slack: 1e-5 of the pixel's light for the fp32 sum, whose terms
+// changed. Culling never adds light (the same slack). At tau = 0.2 something must be skipped,
+// or the test would prove nothing; the counts add up to one test per VSGL per subgroup with a
+// surface pixel, and full-rate shading counts at level 0.
+TEST_F(VsglShadeTest, CullingLosesAtMostItsBudget) {
+  std::vector<gpu::Vsgl> vsgls = hardCaseVsgls(scene_, receiver(kWidth / 2, kHeight / 2));
+  const engine::Bounds b = scene_.bounds();
+  for (int i = 0; i < 64; ++i) {
+    const float t = float(i) / 64.0f;
+    const glm::vec3 mean =
+        b.min + (b.max - b.min) * glm::vec3(0.1f + 0.8f * t, 0.5f + 0.4f * std::sin(9.0f * t),
+                                            0.1f + 0.8f * std::fmod(7.0f * t, 1.0f));
+    gpu::Vsgl v{};
+    v.diffuse = vsglLobe(mean, 1e-3f, glm::vec3(std::sin(5.0f * t), -1.0f, std::cos(3.0f * t)),
+                         2.2925f, glm::vec3(1e-3f));
+    v.specular = vsglLobe(mean, 1e-3f, {0, 1, 0}, 30.0f, glm::vec3(5e-4f));
+    vsgls.push_back(v);
+  }
+  const auto count = static_cast<uint32_t>(vsgls.size());
+  size_t surface = 0;
+  for (uint32_t y = 0; y < kHeight; ++y)
+    for (uint32_t x = 0; x < kWidth; ++x) surface += !decoded_.at(x, y).background();
+  for (uint32_t flags : {VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY, VSGL_SHADE_VISIBILITY}) {
+    const Shaded full = shade(vsgls, flags);
+    for (float budget : {0.01f, 0.2f}) {
+      SCOPED_TRACE("flags " + std::to_string(flags) + ", budget " + std::to_string(budget));
+      gpu::VsglShadeStats stats{};
+      const Shaded culled = shade(vsgls, flags | VSGL_SHADE_CULL, nullptr, budget, &stats);
+      double worst = 0.0;  // largest loss / (tau x light)
+      for (size_t i = 0; i < full.diffuse.size(); ++i) {
+        const glm::dvec3 want = glm::dvec3(full.diffuse[i]) + glm::dvec3(full.glossy[i]);
+        const glm::dvec3 got = glm::dvec3(culled.diffuse[i]) + glm::dvec3(culled.glossy[i]);
+        const double light = std::max({want.r, want.g, want.b});
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_TRUE(std::isfinite(got[c])) << "pixel " << i;
+          const double loss = want[c] - got[c];
+          EXPECT_GE(loss, -1e-5 * light) << "pixel " << i << " channel " << c;
+          EXPECT_LE(loss, (budget + 1e-5) * light) << "pixel " << i << " channel " << c;
+          if (light > 0.0) worst = std::max(worst, loss / (budget * light));
+        }
+      }
+      const uint32_t tested = stats.tested[0], skipped = stats.skipped[0];
+      std::printf(
+          "flags %u, budget %.2f: %u of %u subgroup x VSGL tests skipped; worst loss %.3f "
+          "of the budget\n",
+          flags, budget, skipped, tested, worst);
+      EXPECT_EQ(tested % count, 0u);
+      EXPECT_GT(tested, 0u);
+      EXPECT_LE(tested, count * surface);
+      EXPECT_LE(skipped, tested);
+      for (int level = 1; level < 4; ++level) EXPECT_EQ(stats.tested[level], 0u);
+      if (budget > 0.1f) {
+        EXPECT_GT(skipped, 0u);
+      }
+    }
+  }
+}

@@ -156,11 +156,12 @@ struct FramePlan {
   bool specularLobes = true;         // the VSGLs' specular lobes were built and shaded
   bool skySkipped = true;            // subgroups that see only sky skipped the VSGL loop
   bool adaptive = true;              // shaded on the adaptive pyramid (Settings::adaptive)
+  bool culled = false;               // VSGLs culled per subgroup (Settings::culling)
   std::vector<std::string> reasons;  // one line per decision that left work out
 };
 
-// What adaptive shading (Settings::adaptive) did in the last frame, per level 0..3: level L has
-// one texel per 2^L x 2^L pixels. Valid like lastFrameTimes().
+// What adaptive shading (Settings::adaptive) and VSGL culling did in the last frame, per level
+// 0..3: level L has one texel per 2^L x 2^L pixels. Valid like lastFrameTimes().
 struct ShadingCounts {
   bool adaptive = false;             // false: adaptive shading was off and every pixel was shaded
   std::array<uint32_t, 4> shaded{};  // texels shaded (the cost: each x vsglCount pairs)
@@ -175,6 +176,10 @@ struct ShadingCounts {
   // pixels excluded).
   std::array<uint32_t, 4> pixelsFrom{};
   uint32_t skyPixels = 0;
+  // VSGL culling (Settings::culling), per level (level 0 also holds full-rate shading): VSGLs
+  // tested against a subgroup's bound, and of those skipped there. Zero when culling was off.
+  std::array<uint32_t, 4> vsglTests{};
+  std::array<uint32_t, 4> vsglsSkipped{};
 };
 
 struct PassTime {
@@ -210,8 +215,8 @@ class IndirectLighting {
   // once that frame's submission has completed and before the next record(); empty if its
   // timestamps are not available yet. Never waits.
   std::vector<PassTime> lastFrameTimes() const;
-  // Adaptive shading's counts of the last recorded frame (valid once its submission has
-  // completed and before the next record(); never waits).
+  // Adaptive shading's and VSGL culling's counts of the last recorded frame (valid once its
+  // submission has completed and before the next record(); never waits).
   ShadingCounts lastShadingCounts() const;
   // The plan of the last recorded frame (valid right after record()).
   const FramePlan& lastPlan() const;

@@ -1,5 +1,7 @@
 #include "passes/vsgl_shade.h"
 
+#include <cstring>
+
 #include "engine/commands.h"
 #include "reference/sg_math.h"
 #include "shared/adaptive_shading.h"
@@ -28,7 +30,14 @@ VsglShade::VsglShade(engine::Context& ctx)
       albedoTable_(ctx, sizeof(glm::vec2) * kGgxAlbedoTableSize * kGgxAlbedoTableSize,
                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload),
       noQueue_(ctx, sizeof(gpu::AdaptiveQueueHeader) + sizeof(uint32_t),
-               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly) {
+               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly),
+      stats_(ctx, sizeof(gpu::VsglShadeStats),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                 VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+             engine::MemoryUsage::GpuOnly),
+      statsReadback_(ctx, sizeof(gpu::VsglShadeStats), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                     engine::MemoryUsage::Readback) {
+  std::memset(statsReadback_.mapped(), 0, statsReadback_.size());
   // Host-visible memory: written here without a submit (the module never submits).
   std::vector<glm::vec2> table;
   for (int i = 0; i < kGgxAlbedoTableSize; ++i)
@@ -54,7 +63,8 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
                         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                     uint32_t(sizeof(gpu::VsglShadePush)), specialization);
   }
   engine::ProfileScope scope(profiler, cmd,
@@ -63,7 +73,7 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
   gpu::VsglShadePush push{};
   const engine::RelativeUnprojection unprojection = engine::relativeUnprojection(camera);
   push.invViewProjRelative = unprojection.invViewProjRelative;
-  push.eye = glm::vec4(unprojection.eye, 1.0f);
+  push.eye = glm::vec4(unprojection.eye, in.cullBudget);
   push.viewport = {gbuffer.width, gbuffer.height};
   push.vsglCount = in.vsglCount;
   push.ism = in.ism;
@@ -78,13 +88,35 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
                                                    Binding::storageImage(out.glossy),
                                                    Binding::storageImage(*in.ismAtlas, 0),
                                                    Binding::storage(albedoTable_),
-                                                   Binding::storage(queue)};
+                                                   Binding::storage(queue),
+                                                   Binding::storage(stats_)};
   if (queued)
     program->dispatchIndirect(cmd, bindings, push, queue, 0);
   else
     program->dispatch(cmd, bindings, push, engine::groupCount(gbuffer.width, VSGL_SHADE_GROUP_X),
                       engine::groupCount(gbuffer.height, VSGL_SHADE_GROUP_Y));
   engine::computeBarrier(cmd);
+}
+
+void VsglShade::recordStatsReset(VkCommandBuffer cmd) {
+  vkCmdFillBuffer(cmd, stats_.handle(), 0, VK_WHOLE_SIZE, 0);
+  engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+void VsglShade::recordStatsReadback(VkCommandBuffer cmd) {
+  engine::computeToTransferBarrier(cmd);
+  const VkBufferCopy copy{0, 0, sizeof(gpu::VsglShadeStats)};
+  vkCmdCopyBuffer(cmd, stats_.handle(), statsReadback_.handle(), 1, &copy);
+  engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+}
+
+gpu::VsglShadeStats VsglShade::lastStats() const {
+  gpu::VsglShadeStats stats;
+  std::memcpy(&stats, statsReadback_.mapped(), sizeof(stats));
+  return stats;
 }
 
 }  // namespace gi

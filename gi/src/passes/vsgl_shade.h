@@ -36,6 +36,7 @@ class VsglShade {
     // indirect dispatch) and the level; `out` is then that level's images.
     const engine::Buffer* queue = nullptr;
     uint32_t level = 0;
+    float cullBudget = 0.0f;  // VSGL_SHADE_CULL: tau (CullingSettings::budget)
   };
 
   // `camera`: the G-buffer camera's view (positions are rebuilt relative to its eye,
@@ -44,11 +45,19 @@ class VsglShade {
   void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,
               const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler = nullptr);
 
+  // VSGL culling's counts: zeroed before a frame's first record(), copied for the host after
+  // its last; lastStats() is valid once that frame has completed (it never waits).
+  void recordStatsReset(VkCommandBuffer cmd);
+  void recordStatsReadback(VkCommandBuffer cmd);
+  gpu::VsglShadeStats lastStats() const;
+
  private:
   engine::Context* ctx_;
   std::array<std::optional<engine::ComputeProgram>, VSGL_SHADE_VARIANTS> programs_;
   engine::Buffer albedoTable_;  // vec2[17 x 17], gi::ggxSpecularAlbedoNode (sg_lighting.glsl)
   engine::Buffer noQueue_;      // bound as the queue by the variants that do not read one
+  engine::Buffer stats_;        // gpu::VsglShadeStats, written by VSGL_SHADE_CULL
+  engine::Buffer statsReadback_;
 };
 
 }  // namespace gi

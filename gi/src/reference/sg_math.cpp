@@ -10,14 +10,6 @@ namespace gi {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-// Positional-variance floor relative to the squared distance, v >= d^2 / 2^41 ([R], section
-// 4.1): keeps lambda_x = d^2 / v <= 2^41 for zero-variance (single-texel) VSGLs, the same cap as
-// VSGL_MAX_SHARPNESS.
-constexpr double kVarianceFloorScale = 0x1p-41;
-// Absolute variance floor (FLT_MIN): with d = 0 and v = 0 (a zero-variance VSGL exactly at the
-// receiver, section 12 case 12) the radiance is a genuine point singularity; the floor makes it
-// huge but finite instead of 0 / 0, and FLT_MIN is the floor the fp32 shader can use as well.
-constexpr double kMinVariance = 0x1p-126;
 // Below these the interpolation factors are replaced by their lambda -> 0 limit, (1 + c) / 2:
 // the ratios they guard are 0 / 0 at 0, and the limit is exact to O(tau^2) = 1e-200.
 constexpr double kTinySteepness = 1e-100;

@@ -87,6 +87,15 @@ double clampedCosineLowerIntegral(double lambda);
 // fit interpolates between L and U, so its error scales with U, not with D).
 double sgClampedCosineIntegralOverPi(double lambda, double cosine);
 
+// Positional-variance floor relative to the squared distance, v >= d^2 / 2^41 ([R], section
+// 4.1): keeps lambda_x = d^2 / v <= 2^41 for zero-variance (single-texel) VSGLs, the same cap as
+// VSGL_MAX_SHARPNESS.
+inline constexpr double kVarianceFloorScale = 0x1p-41;
+// Absolute variance floor (FLT_MIN): with d = 0 and v = 0 (a zero-variance VSGL exactly at the
+// receiver, section 12 case 12) the radiance is a genuine point singularity; the floor makes it
+// huge but finite instead of 0 / 0, and FLT_MIN is the floor the fp32 shader can use as well.
+inline constexpr double kMinVariance = 0x1p-126;
+
 // Incoming radiance at a receiver from one VSGL lobe (section 4.1; the record of section 3.4):
 //   L_i(w) = scale G(w; -xi, lambda) G(w; l / d, lambda_x) = scale exp(sg.logAmplitude)
 //            G(w; sg.axis, sg.sharpness),
