@@ -1,5 +1,6 @@
 #include "engine/environments.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -107,6 +108,28 @@ ImageRgba32f makeBuiltinEnvironment(const std::string& name, uint32_t width) {
       pixel[3] = 1.0f;
     }
   return image;
+}
+
+glm::vec3 environmentRadiance(const ImageRgba32f& equirect, glm::vec3 direction) {
+  const int w = equirect.width, h = equirect.height;
+  // u = phi / 2 pi from +x towards +z, v = theta / pi from +y; atan2 keeps the poles accurate.
+  const float pi = 3.14159265358979f;
+  float phi = std::atan2(direction.z, direction.x);
+  if (phi < 0.0f) phi += 2.0f * pi;
+  const float theta = std::atan2(std::hypot(direction.x, direction.z), direction.y);
+  const float px = phi / (2.0f * pi) * float(w) - 0.5f, py = theta / pi * float(h) - 0.5f;
+  const float fx0 = std::floor(px), fy0 = std::floor(py);
+  const float fx = px - fx0, fy = py - fy0;
+  auto texel = [&](int x, int y) {
+    x = ((x % w) + w) % w;
+    y = std::clamp(y, 0, h - 1);
+    const float* p = &equirect.pixels[(size_t(y) * size_t(w) + size_t(x)) * 4];
+    return glm::vec3(p[0], p[1], p[2]);
+  };
+  const int x0 = int(fx0), y0 = int(fy0);
+  const glm::vec3 top = glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx);
+  const glm::vec3 bottom = glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx);
+  return glm::mix(top, bottom, fy);
 }
 
 }  // namespace engine

@@ -13,6 +13,8 @@
 #include "engine/rasterizer.h"
 #include "passes/adaptive_shading.h"
 #include "passes/brsm_pdf.h"
+#include "passes/env_fis.h"
+#include "passes/env_map.h"
 #include "passes/ism.h"
 #include "passes/kmeans.h"
 #include "passes/vsgl_shade.h"
@@ -31,7 +33,7 @@ bool sameCreationFields(const Settings& a, const Settings& b) {
          a.ism.mapSize == b.ism.mapSize && a.ism.pointCount == b.ism.pointCount &&
          a.ism.pointsPerVsgl == b.ism.pointsPerVsgl && a.ism.depthBias == b.ism.depthBias &&
          a.ism.slopeBias == b.ism.slopeBias && a.ism.centreOffset == b.ism.centreOffset &&
-         a.ism.pcf == b.ism.pcf;
+         a.ism.pcf == b.ism.pcf && a.environment.mapSize == b.environment.mapSize;
 }
 
 engine::Light engineLight(const Light& light) {
@@ -121,6 +123,8 @@ struct IndirectLighting::Impl {
   void recordBlackOutputs(VkCommandBuffer cmd);
   // The VSGLs of this frame: sampled with FIS or clustered with k-means.
   const engine::Buffer& recordVsgls(VkCommandBuffer cmd, const RsmView& rsmView, uint32_t rule);
+  // The environment's conversion (when it changed) and shading into `environmentImages`.
+  void recordEnvironment(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera);
 
   engine::Context ctx;
   Settings settings;
@@ -147,6 +151,12 @@ struct IndirectLighting::Impl {
   AdaptiveShading adaptive;
   IndirectImages indirect;
   std::optional<engine::Image> debugVisibility;  // created with the first debug frame
+  // Environment lighting: created together by the first setEnvironment; `environmentSet` is
+  // false again after setEnvironment with width 0.
+  std::optional<EnvironmentMap> environmentMap;
+  std::optional<EnvFisShade> environmentShade;
+  std::optional<IndirectImages> environmentImages;
+  bool environmentSet = false;
   engine::GpuProfiler profiler;
 };
 
@@ -155,8 +165,14 @@ namespace {
 // The effect planner (docs/integration.md, "The effect planner"): which passes this frame needs.
 // Each decision leaves out only work whose result is exactly zero or never read.
 FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance, float maxSpecular,
-                    bool canOcclude) {
+                    bool canOcclude, bool environment, bool environmentChanged) {
   FramePlan plan;
+  plan.environment = environment;
+  plan.environmentConverted = environment && environmentChanged;
+  if (!environment)
+    plan.reasons.push_back("environment: none set (setEnvironment): no environment passes");
+  else if (!environmentChanged)
+    plan.reasons.push_back("environment: unchanged since its conversion: not converted again");
   plan.visibility = s.ismEnabled;
   plan.glossy = s.glossy;
   plan.adaptive = s.adaptive.enabled;
@@ -239,7 +255,8 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
   const uint32_t rule = static_cast<uint32_t>(settings.rule);
 
-  plan = planFrame(settings, in.light, maxReflectance, maxSpecular, canOcclude);
+  plan = planFrame(settings, in.light, maxReflectance, maxSpecular, canOcclude, environmentSet,
+                   environmentSet && environmentMap->pending());
 
   ctx.recordDeferredSetup(cmd);
   profiler.beginFrame(cmd);
@@ -256,12 +273,18 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
     } else {
       recordBlackOutputs(cmd);
     }
+    if (plan.environment) recordEnvironment(cmd, gbuffer, camera);
   }
 
   out = {};
   out.indirectDiffuse = {indirect.diffuse.handle(), indirect.diffuse.view(),
                          indirect.diffuse.layout()};
   out.indirectGlossy = {indirect.glossy.handle(), indirect.glossy.view(), indirect.glossy.layout()};
+  if (plan.environment) {
+    const IndirectImages& e = *environmentImages;
+    out.environmentDiffuse = {e.diffuse.handle(), e.diffuse.view(), e.diffuse.layout()};
+    out.environmentGlossy = {e.glossy.handle(), e.glossy.view(), e.glossy.layout()};
+  }
   if (vsgls && plan.adaptive) {
     engine::Image& levels = adaptive.levelMap();
     out.shadingLevels = {levels.handle(), levels.view(), levels.layout()};
@@ -419,7 +442,7 @@ Status IndirectLighting::setSettings(const Settings& settings) {
   if (!sameCreationFields(settings, impl_->settings))
     return failure(
         "Settings: a creation field (rsmSize, maxVsglCount, brsm.importanceCount, "
-        "brsm.gridSize, ism*) changed; create a new IndirectLighting instead");
+        "brsm.gridSize, ism*, environment.mapSize) changed; create a new IndirectLighting instead");
   if (settings.vsglCount > impl_->maxCount)
     return failure("Settings.vsglCount: " + std::to_string(settings.vsglCount) +
                    " exceeds maxVsglCount " + std::to_string(impl_->maxCount));
@@ -429,6 +452,57 @@ Status IndirectLighting::setSettings(const Settings& settings) {
 
 const Settings& IndirectLighting::settings() const {
   return impl_->settings;
+}
+
+void IndirectLighting::Impl::recordEnvironment(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
+                                               const engine::View& camera) {
+  if (plan.environmentConverted) environmentMap->record(cmd, &profiler);
+  const EnvironmentSettings& e = settings.environment;
+  EnvFisShade::Inputs in;
+  in.map = &environmentMap->map();
+  in.sampler = environmentMap->sampler().handle();
+  in.mapSize = environmentMap->size();
+  in.levels = environmentMap->levels();
+  in.sh = &environmentMap->sh();
+  in.sampleCount = e.sampleCount;
+  in.mode = static_cast<EnvFisShade::Mode>(e.sampling);
+  in.brdf = static_cast<EnvFisShade::Brdf>(e.brdf);
+  in.wardAnisotropy = e.wardAnisotropy;
+  in.kernelExtent = e.kernelScale;
+  environmentShade->record(cmd, gbuffer, camera, in, *environmentImages, &profiler);
+  engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                        VK_ACCESS_2_MEMORY_READ_BIT);
+}
+
+Status IndirectLighting::setEnvironment(const EnvironmentImage& e) {
+  if (e.width == 0) {
+    impl_->environmentSet = false;
+    return {};
+  }
+  // 32768 x 16384 is already 8 GiB of texels: larger is a mistake, not an environment.
+  if (e.height == 0 || e.width > 32768 || e.height > 32768 || !e.rgba)
+    return failure("EnvironmentImage: " + std::to_string(e.width) + " x " +
+                   std::to_string(e.height) +
+                   (e.rgba ? " is not a size in [1, 32768]^2" : " without texels (rgba is null)"));
+  try {
+    engine::ImageRgba32f image;
+    image.width = int(e.width);
+    image.height = int(e.height);
+    image.pixels.assign(e.rgba, e.rgba + size_t{e.width} * e.height * 4);
+    // Created before the frame that first uses them: a host device gives new images their
+    // first layout at the start of the next record().
+    if (!impl_->environmentMap) {
+      impl_->environmentMap.emplace(impl_->ctx, impl_->settings.environment.mapSize);
+      impl_->environmentShade.emplace(impl_->ctx);
+      impl_->environmentImages = createIndirectImages(impl_->ctx, impl_->width, impl_->height);
+    }
+    impl_->environmentMap->upload(impl_->ctx, image);  // keeps the earlier one on failure
+  } catch (const std::exception& ex) {
+    return failure(std::string("EnvironmentImage: ") + ex.what());
+  }
+  impl_->environmentSet = true;
+  return {};
 }
 
 Status IndirectLighting::record(VkCommandBuffer cmd, const FrameInput& input, FrameOutput* output) {

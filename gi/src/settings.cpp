@@ -69,6 +69,22 @@ std::string validateSettings(const Settings& s) {
                  "is outside [0, 1]");
   if (!(a.f0Tolerance >= 0.0f && a.f0Tolerance <= 1.0f))
     return field("adaptive.f0Tolerance", std::to_string(a.f0Tolerance), "is outside [0, 1]");
+  const EnvironmentSettings& e = s.environment;
+  if (e.sampleCount < 1 || e.sampleCount > 4096)
+    return field("environment.sampleCount", std::to_string(e.sampleCount), "is outside [1, 4096]");
+  if (uint32_t(e.sampling) > uint32_t(EnvironmentSampling::Randomised))
+    return field("environment.sampling", std::to_string(uint32_t(e.sampling)),
+                 "is not Filtered, Unfiltered or Randomised");
+  if (uint32_t(e.brdf) > uint32_t(EnvironmentBrdf::Ward))
+    return field("environment.brdf", std::to_string(uint32_t(e.brdf)), "is not Ggx, Phong or Ward");
+  if (!(e.wardAnisotropy >= 0.01f && e.wardAnisotropy <= 100.0f))
+    return field("environment.wardAnisotropy", std::to_string(e.wardAnisotropy),
+                 "is outside [0.01, 100]");
+  if (!(e.kernelScale >= 1.0f && e.kernelScale <= 16.0f))
+    return field("environment.kernelScale", std::to_string(e.kernelScale), "is outside [1, 16]");
+  if (e.mapSize < 16 || e.mapSize > 2048 || (e.mapSize & (e.mapSize - 1)) != 0)
+    return field("environment.mapSize", std::to_string(e.mapSize),
+                 "is not a power of two in [16, 2048]");
   if (!(s.culling.budget >= 0.0f && s.culling.budget <= 0.5f))
     return field("culling.budget", std::to_string(s.culling.budget), "is outside [0, 0.5]");
   if (s.debugVsgl < -1 || (s.debugVsgl >= 0 && uint32_t(s.debugVsgl) >= s.vsglCount))

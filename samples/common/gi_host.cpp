@@ -170,6 +170,12 @@ Indirect readIndirect(engine::Context& ctx, const gi::FrameOutput& output, uint3
           readOutput(ctx, output.indirectGlossy, width, height, VK_FORMAT_R32G32B32A32_SFLOAT)};
 }
 
+Indirect readEnvironment(engine::Context& ctx, const gi::FrameOutput& output, uint32_t width,
+                         uint32_t height) {
+  return {readOutput(ctx, output.environmentDiffuse, width, height, VK_FORMAT_R32G32B32A32_SFLOAT),
+          readOutput(ctx, output.environmentGlossy, width, height, VK_FORMAT_R32G32B32A32_SFLOAT)};
+}
+
 std::vector<glm::dvec3> indirectSum(const Indirect& indirect) {
   std::vector<glm::dvec3> sum(indirect.diffuse.pixels.size() / 4);
   for (size_t i = 0; i < sum.size(); ++i)

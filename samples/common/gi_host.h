@@ -63,6 +63,9 @@ struct Indirect {
 // Both outputs have the G-buffer's size.
 Indirect readIndirect(engine::Context& ctx, const gi::FrameOutput& output, uint32_t width,
                       uint32_t height);
+// The environment light's two outputs (FrameOutput::environmentDiffuse and environmentGlossy).
+Indirect readEnvironment(engine::Context& ctx, const gi::FrameOutput& output, uint32_t width,
+                         uint32_t height);
 // Diffuse + glossy per pixel, in double (what the benchmark and the flicker captures score).
 std::vector<glm::dvec3> indirectSum(const Indirect& indirect);
 std::vector<gpu::Vsgl> readVsgls(engine::Context& ctx, const gi::FrameOutput& output);

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "engine/builtin_scenes.h"
+#include "engine/environments.h"
 #include "engine/error.h"
 #include "engine/gltf.h"
 
@@ -22,6 +23,19 @@ engine::Scene loadScene(const std::string& name) {
                         "' is neither a built-in scene (cornell, atrium, checker) nor a "
                         ".gltf/.glb file");
   return engine::loadGltf(name);
+}
+
+engine::ImageRgba32f loadEnvironment(const std::string& name) {
+  const std::vector<std::string> builtins = engine::builtinEnvironmentNames();
+  if (std::find(builtins.begin(), builtins.end(), name) != builtins.end())
+    return engine::makeBuiltinEnvironment(name);
+  if (!std::filesystem::is_regular_file(name)) {
+    std::string list;
+    for (const std::string& b : builtins) list += (list.empty() ? "" : ", ") + b;
+    throw engine::Error("--environment: '" + name + "' is neither a built-in environment (" + list +
+                        ") nor an image file");
+  }
+  return engine::readImage(name);
 }
 
 engine::View sceneView(const engine::Scene& scene, uint32_t width, uint32_t height) {

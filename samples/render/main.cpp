@@ -10,11 +10,14 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include "debug_views.h"
 #include "engine/commands.h"
 #include "engine/direct_light.h"
+#include "engine/environments.h"
 #include "engine/gbuffer.h"
+#include "engine/gbuffer_reference.h"
 #include "engine/gltf.h"
 #include "engine/image_io.h"
 #include "engine/machine_peak.h"
@@ -74,14 +77,28 @@ int run(const render::Options& o) {
   engine::Image radiance(ctx, radianceDesc);
   engine::initialLayout(ctx, radiance, VK_IMAGE_LAYOUT_GENERAL);
 
+  std::optional<engine::ImageRgba32f> environment;
+  if (!o.environment.empty()) environment = samples::loadEnvironment(o.environment);
   std::unique_ptr<gi::IndirectLighting> indirect;
   const engine::Light* bouncing = samples::bouncingLight(scene);
-  if (o.indirect && bouncing)
+  if (o.indirect && (bouncing || environment))
     indirect = samples::createIndirect(ctx, o.gi, o.width, o.height, gpuScene, scene);
   if (o.indirect && !bouncing)
-    std::printf("indirect: skipped, the scene has no spot or directional light to bounce\n");
+    std::printf("indirect: %s, the scene has no spot or directional light to bounce\n",
+                environment ? "environment light only" : "skipped");
+  // Without a light to bounce the module still shades the environment: a light of no power
+  // makes the planner skip every VSGL pass.
+  engine::Light dark;
+  dark.type = engine::LightType::Directional;
+  dark.intensity = 0.0f;
   gi::FrameInput input;
-  if (indirect) input = samples::frameInput(gbuffer, view, *bouncing);
+  if (indirect) input = samples::frameInput(gbuffer, view, bouncing ? *bouncing : dark);
+  if (indirect && environment) {
+    samples::check(indirect->setEnvironment(
+        {uint32_t(environment->width), uint32_t(environment->height), environment->pixels.data()}));
+    std::printf("environment: %s, %dx%d, FIS with %u samples per pixel\n", o.environment.c_str(),
+                environment->width, environment->height, o.gi.environment.sampleCount);
+  }
 
   engine::GpuProfiler profiler(ctx);
   render::PassTable passTimes;
@@ -148,7 +165,7 @@ int run(const render::Options& o) {
   if (samples::isBuiltinScene(o.scene)) engine::writeGltf(scene, base + ".gltf");
   engine::ImageRgba32f image = samples::readRadiance(ctx, radiance);
   engine::ToneMapSettings toneMap{o.exposureEv};
-  if (indirect) {
+  if (indirect && output.vsglCount > 0) {  // light bounced (no bounce: environment light only)
     samples::Indirect result = samples::readIndirect(ctx, output, o.width, o.height);
     samples::addInto(image, result.diffuse);
     samples::addInto(image, result.glossy);
@@ -184,13 +201,34 @@ int run(const render::Options& o) {
       std::printf("wrote %s_visibility.png (ISM visibility of VSGL %u)\n", base.c_str(), k);
     }
   }
+  if (indirect && output.environmentDiffuse.image) {
+    samples::Indirect light = samples::readEnvironment(ctx, output, o.width, o.height);
+    samples::addInto(light.diffuse, light.glossy);
+    samples::writePair(base + "_environment", light.diffuse, toneMap);
+    samples::addInto(image, light.diffuse);
+  }
+  if (environment) {  // the background: the environment itself where no surface is seen
+    const engine::GBufferData g = engine::readbackGBuffer(ctx, gbuffer);
+    for (uint32_t y = 0; y < o.height; ++y)
+      for (uint32_t x = 0; x < o.width; ++x) {
+        if (!g.at(x, y).background()) continue;
+        const glm::vec3 dir(engine::cameraRayReference(view, glm::dvec2(x, y) + 0.5).dir);
+        const glm::vec3 sky = engine::environmentRadiance(*environment, dir);
+        float* p = &image.pixels[(size_t{y} * o.width + x) * 4];
+        for (int c = 0; c < 3; ++c) p[c] += sky[c];
+      }
+  }
   samples::writePair(base, image, toneMap);
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   std::printf(
       "wrote %s.exr (linear) and %s.png (exposure x%.3g, ACES filmic, sRGB)%s in %.2f s "
       "wall\n",
       base.c_str(), base.c_str(), engine::exposureScale(image, toneMap),
-      indirect ? ", _indirect.{exr,png}, _vsgls.png" : "", wall);
+      indirect
+          ? (output.environmentDiffuse.image ? ", _indirect, _environment.{exr,png}, _vsgls.png"
+                                             : ", _indirect.{exr,png}, _vsgls.png")
+          : "",
+      wall);
   return samples::validationExitStatus(ctx, "vsgl_render");
 }
 

@@ -58,7 +58,13 @@ const char* usage() {
          "off;\n"
          "                       docs/techniques/vsgl-culling.md)\n"
          "  --culling-budget T   that budget, the light a pixel may lose, 0..0.5 (default 0.01)\n"
-         "  --debug-vsgl N       VSGL whose visibility is drawn (default: the most powerful)\n";
+         "  --debug-vsgl N       VSGL whose visibility is drawn (default: the most powerful)\n"
+         "environment light (docs/techniques/environment.md):\n"
+         "  --environment NAME|FILE  a built-in environment (sky, studio, white) or an\n"
+         "                       equirectangular HDR/EXR file, y up (default: none)\n"
+         "  --env-samples N      FIS samples per pixel, 1..4096 (default 40)\n"
+         "  --env-sampling MODE  filtered (default), unfiltered or randomised\n"
+         "  --env-brdf NAME      ggx (the G-buffer's, default), phong or ward\n";
 }
 
 uint32_t shadowResolutionFor(const Options& o) {
@@ -147,6 +153,22 @@ Options parseOptions(int argc, char** argv) {
       o.gi.adaptive.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--adaptive-level")
       o.gi.adaptive.coarsestLevel = parseUint(arg, args.value(), 0, 3);
+    else if (arg == "--environment")
+      o.environment = args.value();
+    else if (arg == "--env-samples")
+      o.gi.environment.sampleCount = parseUint(arg, args.value(), 1, 4096);
+    else if (arg == "--env-sampling")
+      o.gi.environment.sampling = parseChoice<gi::EnvironmentSampling>(
+          arg, args.value(),
+          {{"filtered", gi::EnvironmentSampling::Filtered},
+           {"unfiltered", gi::EnvironmentSampling::Unfiltered},
+           {"randomised", gi::EnvironmentSampling::Randomised}});
+    else if (arg == "--env-brdf")
+      o.gi.environment.brdf =
+          parseChoice<gi::EnvironmentBrdf>(arg, args.value(),
+                                           {{"ggx", gi::EnvironmentBrdf::Ggx},
+                                            {"phong", gi::EnvironmentBrdf::Phong},
+                                            {"ward", gi::EnvironmentBrdf::Ward}});
     else if (arg == "--culling")
       o.gi.culling.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--culling-budget")

@@ -28,6 +28,9 @@ struct Options {
   // Indirect light through the public API (gi/include); indirect = false renders direct only.
   bool indirect = true;
   gi::Settings gi;
+  // Environment light: a built-in name (engine/environments.h) or an HDR/EXR equirectangular
+  // file; empty = none.
+  std::string environment;
   // VSGL whose ISM visibility becomes the debug picture; -1 = the most powerful one.
   int32_t debugVsgl = -1;
 };

@@ -9,6 +9,7 @@
 #include "engine/builtin_scenes.h"
 #include "engine/commands.h"
 #include "engine/gbuffer.h"
+#include "engine/gbuffer_reference.h"
 #include "engine/image_metrics.h"
 #include "engine/rasterizer.h"
 #include "gi/indirect_lighting.h"
@@ -223,6 +224,15 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   settings.adaptive.lightTolerance = -1.0f;
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
   EXPECT_EQ(status.message.rfind("Settings.adaptive.lightTolerance: -1", 0), 0u) << status.message;
+  settings = smallSettings();
+  settings.environment.mapSize = 100;
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message,
+            "Settings.environment.mapSize: 100 is not a power of two in [16, 2048]");
+  settings = smallSettings();
+  settings.environment.sampleCount = 0;
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message, "Settings.environment.sampleCount: 0 is outside [1, 4096]");
   settings = smallSettings();
   settings.culling.budget = std::numeric_limits<float>::quiet_NaN();
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
@@ -495,6 +505,81 @@ TEST_F(IndirectLightingApiTest, AdaptiveShadingStaysCloseToFullShading) {
               shaded, surface, e.relativeMse);
   EXPECT_EQ(e.nonFinite, 0u);
   EXPECT_LE(e.relativeMse, 8e-4);
+}
+
+// The environment through the API (docs/techniques/environment.md): without one, no
+// environment pass runs and its outputs are null; once set, it is converted in the next frame
+// only and shaded in every frame; removed, it is gone again. A white environment of radiance 1
+// is the furnace: every surface pixel's diffuse light is its albedo (the 9-term SH of a constant
+// is exact: the fp32 projection's 1e-4, as tests/gpu/test_env_map.cpp measures, and rounding),
+// and its glossy light the specular lobe's directional albedo, in [0, 1] (its 40-sample value
+// is tested against the CPU twin in tests/gpu/test_env_fis.cpp). Bad texels are refused with
+// their pixel, and the earlier environment stays.
+TEST_F(IndirectLightingApiTest, EnvironmentIsShadedOnlyWhenSet) {
+  gi::Status status;
+  auto lighting =
+      gi::IndirectLighting::create(handles(), smallSettings(), kWidth, kHeight, &status);
+  ASSERT_TRUE(lighting) << status.message;
+  ASSERT_TRUE(lighting->setScene(geometry()));
+  const engine::GBufferData g = engine::readbackGBuffer(ctx(), *gbuffer_);
+  gi::FrameOutput out;
+  auto frame = [&] {
+    ctx().submitAndWait(
+        [&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, input(), &out)); });
+    for (engine::Image* image :
+         {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+      image->setLayout(out.gbufferLayout);
+  };
+  auto ran = [&](const std::string& pass) {
+    for (const gi::PassTime& p : lighting->lastFrameTimes())
+      if (p.name == pass) return true;
+    return false;
+  };
+  frame();
+  EXPECT_FALSE(lighting->lastPlan().environment);
+  EXPECT_EQ(out.environmentDiffuse.image, VK_NULL_HANDLE);
+  EXPECT_FALSE(ran("environment FIS"));
+
+  std::vector<float> white(64 * 32 * 4, 1.0f);
+  ASSERT_TRUE(lighting->setEnvironment({64, 32, white.data()}));
+  for (int repeat = 0; repeat < 2; ++repeat) {
+    SCOPED_TRACE(repeat == 0 ? "first frame" : "second frame");
+    frame();
+    EXPECT_TRUE(lighting->lastPlan().environment);
+    EXPECT_EQ(lighting->lastPlan().environmentConverted, repeat == 0);
+    EXPECT_EQ(ran("environment conversion"), repeat == 0);
+    EXPECT_TRUE(ran("environment FIS"));
+    ASSERT_NE(out.environmentDiffuse.image, VK_NULL_HANDLE);
+    const std::vector<glm::vec4> diffuse = readOutput(out.environmentDiffuse);
+    const std::vector<glm::vec4> glossy = readOutput(out.environmentGlossy);
+    double worst = 0.0;
+    for (size_t i = 0; i < diffuse.size(); ++i) {
+      const engine::GBufferSample& at = g.samples[i];
+      for (int c = 0; c < 3; ++c) {
+        if (at.background()) {
+          EXPECT_EQ(diffuse[i][c], 0.0f);
+          continue;
+        }
+        worst = std::max(worst, std::abs(diffuse[i][c] - at.diffuse[c]));
+        EXPECT_GE(glossy[i][c], 0.0f);
+        EXPECT_LE(glossy[i][c], 1.0f);
+      }
+    }
+    EXPECT_LE(worst, 1e-3) << "diffuse furnace";
+  }
+  std::vector<float> bad = white;
+  bad[(1 * 64 + 3) * 4 + 1] = std::numeric_limits<float>::quiet_NaN();
+  const gi::Status refused = lighting->setEnvironment({64, 32, bad.data()});
+  EXPECT_FALSE(refused);
+  EXPECT_NE(refused.message.find("pixel (3, 1) channel g is NaN"), std::string::npos)
+      << refused.message;
+  EXPECT_FALSE(lighting->setEnvironment({64, 0, white.data()}));
+  frame();
+  EXPECT_TRUE(lighting->lastPlan().environment) << "the earlier environment stays";
+  ASSERT_TRUE(lighting->setEnvironment({}));
+  frame();
+  EXPECT_FALSE(lighting->lastPlan().environment);
+  EXPECT_EQ(out.environmentDiffuse.image, VK_NULL_HANDLE);
 }
 
 // VSGL culling through the API, at full rate and over adaptive shading: the plan says so, the

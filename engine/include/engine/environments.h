@@ -40,4 +40,9 @@ std::vector<std::string> builtinEnvironmentNames();
 // in [4, 16384]. Throws engine::Error for an unknown name (listing the names) or a bad width.
 ImageRgba32f makeBuiltinEnvironment(const std::string& name, uint32_t width = 1024);
 
+// The radiance an equirectangular environment (the conventions above) sends back along the unit
+// `direction` (from the viewer out): read bilinearly, texel centres at (i + 1/2) / width, u
+// wrapping and v clamped. What a host draws where its G-buffer sees no surface.
+glm::vec3 environmentRadiance(const ImageRgba32f& equirect, glm::vec3 direction);
+
 }  // namespace engine

@@ -122,6 +122,18 @@ struct Camera {
   glm::mat4 proj{1.0f};
 };
 
+// An environment light (docs/techniques/environment.md): radiance from infinitely far away as an
+// equirectangular (latitude-longitude) image in world space, y up: row 0 looks along +y, row
+// height - 1 along -y, and column u (texel centres at (i + 1/2) / width) at azimuth
+// phi = 2 pi u from +x towards +z. glTF has no environment; hosts take it from their own files.
+struct EnvironmentImage {
+  uint32_t width = 0;  // 0: no environment
+  uint32_t height = 0;
+  // width x height RGBA linear floats (radiance, W sr^-1 m^-2; alpha ignored), row 0 first.
+  // Copied by setEnvironment: the host may free it on return.
+  const float* rgba = nullptr;
+};
+
 struct FrameInput {
   GBufferImages gbuffer;
   Camera camera;
@@ -140,6 +152,10 @@ struct FrameOutput {
   // R32_SFLOAT level (0..3) at which each pixel's light was shaded by adaptive shading, -1 for
   // the sky, for debug views (VK_NULL_HANDLE when adaptive shading is off).
   ImageRef shadingLevels;
+  // RGBA32F radiance toward the camera reflected from the environment light (albedo and BRDF
+  // applied, unshadowed), like the indirect images; VK_NULL_HANDLE without an environment.
+  ImageRef environmentDiffuse;
+  ImageRef environmentGlossy;
   // The VSGL records of this frame (gpu::Vsgl, shaders/shared/vsgl.h), for debug views.
   VkBuffer vsgls = VK_NULL_HANDLE;
   uint32_t vsglCount = 0;
@@ -150,14 +166,16 @@ struct FrameOutput {
 // What the effect planner ran in the last recorded frame, and why it left work out
 // (docs/integration.md, "The effect planner"). Settings::planner turns each decision off.
 struct FramePlan {
-  bool bounce = true;                // RSM, PDF, VSGL generation, ISM and shading ran
-  bool visibility = true;            // the ISMs were built and tested
-  bool glossy = true;                // the glossy term was shaded
-  bool specularLobes = true;         // the VSGLs' specular lobes were built and shaded
-  bool skySkipped = true;            // subgroups that see only sky skipped the VSGL loop
-  bool adaptive = true;              // shaded on the adaptive pyramid (Settings::adaptive)
-  bool culled = false;               // VSGLs culled per subgroup (Settings::culling)
-  std::vector<std::string> reasons;  // one line per decision that left work out
+  bool bounce = true;                 // RSM, PDF, VSGL generation, ISM and shading ran
+  bool visibility = true;             // the ISMs were built and tested
+  bool glossy = true;                 // the glossy term was shaded
+  bool specularLobes = true;          // the VSGLs' specular lobes were built and shaded
+  bool skySkipped = true;             // subgroups that see only sky skipped the VSGL loop
+  bool adaptive = true;               // shaded on the adaptive pyramid (Settings::adaptive)
+  bool culled = false;                // VSGLs culled per subgroup (Settings::culling)
+  bool environment = false;           // the environment was shaded (an environment is set)
+  bool environmentConverted = false;  // ... and converted this frame (it changed)
+  std::vector<std::string> reasons;   // one line per decision that left work out
 };
 
 // What adaptive shading (Settings::adaptive) and VSGL culling did in the last frame, per level
@@ -201,6 +219,12 @@ class IndirectLighting {
 
   // The geometry the RSM and ISMs are built from; required before the first record().
   Status setScene(const SceneGeometry& scene);
+
+  // Sets the environment light (EnvironmentImage), or removes it with width 0. The image is
+  // copied and converted in the next record(); the planner shades it only while one is set.
+  // Call it when no recorded frame is still executing. Bad input (a size beyond the device's
+  // image limit, a non-finite or negative texel) is refused, naming the pixel.
+  Status setEnvironment(const EnvironmentImage& environment);
 
   // Changes the per-frame settings; a "creation" field that differs is refused (recreate).
   Status setSettings(const Settings& settings);

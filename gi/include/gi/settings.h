@@ -146,6 +146,33 @@ struct CullingSettings {
   float budget = 0.01f;  // tau, [0, 0.5]; larger = more VSGLs skipped, more light lost
 };
 
+// Environment lighting (docs/techniques/environment.md), used when the host has set an
+// environment (IndirectLighting::setEnvironment): filtered importance sampling of a
+// dual-paraboloid map after Colbert and Krivanek (vsgl-math.md section 10), unshadowed.
+enum class EnvironmentSampling : uint32_t {
+  Filtered = 0,    // each sample reads the mip level its solid angle covers (the method)
+  Unfiltered = 1,  // level 0: the aliasing the filter removes (comparison)
+  Randomised = 2,  // level 0, the sample set rotated per pixel: noise instead of aliasing
+};
+// The lobe sampled and shaded for the glossy term. Ggx is the G-buffer's BRDF (brdf.glsl);
+// Phong (exponent 2 / alpha^2 - 2) and Ward (alpha_x = alpha, alpha_y = alpha x wardAnisotropy)
+// reflect a constant F0 and exist to compare the samplers of [S1] and [S2].
+enum class EnvironmentBrdf : uint32_t { Ggx = 0, Phong = 1, Ward = 2 };
+
+struct EnvironmentSettings {
+  // FIS samples per pixel N, [1, 4096] ([S2]: 24-50 look right). Cost ~ N x pixels.
+  uint32_t sampleCount = 40;
+  EnvironmentSampling sampling = EnvironmentSampling::Filtered;
+  EnvironmentBrdf brdf = EnvironmentBrdf::Ggx;
+  float wardAnisotropy = 1.0f;  // alpha_y / alpha_x of the Ward lobe, [0.01, 100]
+  // K of the level rule l = max(log4(K S^2 / (N p r)), 0), [1, 16] ([S2]: 4). Larger =
+  // blurrier, less aliasing. No cost.
+  float kernelScale = 4.0f;
+  // Creation. Texels per side of each paraboloid map S, a power of two in [16, 2048]. Cost:
+  // 32 S^2 bytes with mips, converted once per environment.
+  uint32_t mapSize = 256;
+};
+
 struct Settings {
   // Creation. RSM side in texels, a power of two in [16, 2048] ([S3]: 512). Cost ~ rsmSize^2 in
   // the RSM, attribute and mip passes (about 0.3 us per texel on lavapipe).
@@ -179,6 +206,7 @@ struct Settings {
   PlannerSettings planner;
   AdaptiveSettings adaptive;
   CullingSettings culling;
+  EnvironmentSettings environment;
   // Debug: index of the VSGL whose ISM visibility is written to FrameOutput::debugVisibility,
   // or -1 for none. Cost: one extra pass over the pixels.
   int32_t debugVsgl = -1;

@@ -43,7 +43,7 @@ void EnvFisShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const en
             VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
         uint32_t(sizeof(gpu::EnvFisPush)), specialization);
   }
-  engine::ProfileScope scope(profiler, cmd, "environment fis");
+  engine::ProfileScope scope(profiler, cmd, "environment FIS");
   gpu::EnvFisPush push{};
   push.invViewProjRelative = engine::relativeUnprojection(camera).invViewProjRelative;
   push.viewport = {gbuffer.width, gbuffer.height};

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "engine/commands.h"
@@ -109,14 +110,27 @@ void EnvironmentMap::upload(engine::Context& ctx, const engine::ImageRgba32f& eq
   desc.width = uint32_t(equirect.width);
   desc.height = uint32_t(equirect.height);
   desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
-  engine::Image image(ctx, desc);
-  image.upload(ctx, equirect.pixels.data(), equirect.pixels.size() * sizeof(float));
-  equirect_ = std::move(image);
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  const size_t bytes = equirect.pixels.size() * sizeof(float);
+  engine::Buffer staging(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, engine::MemoryUsage::Upload);
+  std::memcpy(staging.mapped(), equirect.pixels.data(), bytes);
+  equirect_ = engine::Image(ctx, desc);
+  staging_ = std::move(staging);
+  pending_ = true;
 }
 
 void EnvironmentMap::record(VkCommandBuffer cmd, engine::GpuProfiler* profiler) {
   if (!hasEnvironment()) throw engine::Error("environment map: record() before any upload()");
+  if (pending_) {
+    engine::imageBarrier(cmd, equirect_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {equirect_.desc().width, equirect_.desc().height, 1};
+    vkCmdCopyBufferToImage(cmd, staging_.handle(), equirect_.handle(),
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    engine::imageBarrier(cmd, equirect_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    pending_ = false;
+  }
   {
     engine::ProfileScope scope(profiler, cmd, "environment conversion");
     const gpu::EnvConvertPush push{{equirect_.desc().width, equirect_.desc().height}, size_, 0};

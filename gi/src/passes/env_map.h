@@ -6,6 +6,7 @@
 // gi/src/reference/env_map_reference.h.
 //
 // Resources (all owned):
+//   staging   host-visible buffer of the last upload's W x H RGBA32F texels
 //   equirect  RGBA32F W x H, 1 level, SAMPLED; SHADER_READ_ONLY_OPTIMAL; read with texelFetch
 //   map       RGBA32F S x S x 2 layers, log2 S + 1 levels, STORAGE | SAMPLED; always GENERAL
 //   sh        storage buffer of one gpu::EnvSh (144 bytes)
@@ -27,16 +28,20 @@ class EnvironmentMap {
   // linear filtering or store to it.
   explicit EnvironmentMap(engine::Context& ctx, uint32_t size = 256);
 
-  // Copies `equirect` (linear RGB, y up, row 0 at the top; the conventions of
-  // reference/env_paraboloid.h; alpha ignored) to the GPU, blocking. Throws engine::Error naming
-  // the problem for an empty image, a pixel count that does not match width x height, a size
-  // beyond the device's image limit, or a non-finite or negative rgb value (with its pixel).
+  // Stages `equirect` (linear RGB, y up, row 0 at the top; the conventions of
+  // reference/env_paraboloid.h; alpha ignored) in host-visible memory for the next record(),
+  // which copies and converts it: nothing is submitted here, so a host's device works too.
+  // Throws engine::Error naming the problem for an empty image, a pixel count that does not
+  // match width x height, a size beyond the device's image limit, or a non-finite or negative
+  // rgb value (with its pixel). The staging memory lives until the next upload.
   void upload(engine::Context& ctx, const engine::ImageRgba32f& equirect);
 
-  // Conversion, mips and SH of the uploaded image. Afterwards map() holds the converted
-  // environment and sh() its coefficients, visible to compute shaders recorded later (the map
-  // through a combined image sampler with sampler(), or storage image views, in GENERAL layout).
-  // Throws engine::Error before any upload.
+  // Whether an upload waits for record().
+  bool pending() const { return pending_; }
+  // Copy (once per upload), conversion, mips and SH of the last uploaded image. Afterwards
+  // map() holds the converted environment and sh() its coefficients, visible to compute
+  // shaders recorded later (the map through a combined image sampler with sampler(), or
+  // storage image views, in GENERAL layout). Throws engine::Error before any upload.
   void record(VkCommandBuffer cmd, engine::GpuProfiler* profiler = nullptr);
 
   const engine::Image& map() const { return map_; }
@@ -56,6 +61,8 @@ class EnvironmentMap {
   uint32_t shLevel_ = 0;
   uint32_t maxImageDimension_ = 0;
   engine::Image equirect_;
+  engine::Buffer staging_;  // the last upload's texels, copied by the next record()
+  bool pending_ = false;
   engine::Image map_;
   engine::Sampler sampler_;
   engine::Buffer sh_;
