@@ -15,6 +15,7 @@
 #include "passes/brsm_pdf.h"
 #include "passes/env_fis.h"
 #include "passes/env_map.h"
+#include "passes/env_sg.h"
 #include "passes/ism.h"
 #include "passes/kmeans.h"
 #include "passes/vsgl_shade.h"
@@ -155,8 +156,12 @@ struct IndirectLighting::Impl {
   // false again after setEnvironment with width 0.
   std::optional<EnvironmentMap> environmentMap;
   std::optional<EnvFisShade> environmentShade;
+  std::optional<EnvSgLights> environmentLights;
   std::optional<IndirectImages> environmentImages;
   bool environmentSet = false;
+  // The SG lights' count and K when they were generated (0: not since the last conversion).
+  uint32_t lightsCount = 0;
+  float lightsKernelScale = 0.0f;
   engine::GpuProfiler profiler;
 };
 
@@ -169,10 +174,6 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
   FramePlan plan;
   plan.environment = environment;
   plan.environmentConverted = environment && environmentChanged;
-  if (!environment)
-    plan.reasons.push_back("environment: none set (setEnvironment): no environment passes");
-  else if (!environmentChanged)
-    plan.reasons.push_back("environment: unchanged since its conversion: not converted again");
   plan.visibility = s.ismEnabled;
   plan.glossy = s.glossy;
   plan.adaptive = s.adaptive.enabled;
@@ -208,6 +209,11 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
         std::string("culling: per subgroup, VSGLs whose bounds add up to at most ") + budget +
         " of the pixels' light are skipped");
   }
+  // Before the bounce decision, whose reason comes last.
+  if (!environment)
+    plan.reasons.push_back("environment: none set (setEnvironment): no environment passes");
+  else if (!environmentChanged)
+    plan.reasons.push_back("environment: unchanged since its conversion: not converted again");
   const float power = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
   if (s.planner.skipWithoutBounce && !(power > 0.0f)) {
     plan.bounce = false;
@@ -456,20 +462,33 @@ const Settings& IndirectLighting::settings() const {
 
 void IndirectLighting::Impl::recordEnvironment(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
                                                const engine::View& camera) {
-  if (plan.environmentConverted) environmentMap->record(cmd, &profiler);
+  if (plan.environmentConverted) {
+    environmentMap->record(cmd, &profiler);
+    lightsCount = 0;
+  }
   const EnvironmentSettings& e = settings.environment;
-  EnvFisShade::Inputs in;
-  in.map = &environmentMap->map();
-  in.sampler = environmentMap->sampler().handle();
-  in.mapSize = environmentMap->size();
-  in.levels = environmentMap->levels();
-  in.sh = &environmentMap->sh();
-  in.sampleCount = e.sampleCount;
-  in.mode = static_cast<EnvFisShade::Mode>(e.sampling);
-  in.brdf = static_cast<EnvFisShade::Brdf>(e.brdf);
-  in.wardAnisotropy = e.wardAnisotropy;
-  in.kernelExtent = e.kernelScale;
-  environmentShade->record(cmd, gbuffer, camera, in, *environmentImages, &profiler);
+  if (e.method == EnvironmentMethod::SgLights) {
+    // The lights depend on the environment, N and K only: generated again when one changed.
+    if (lightsCount != e.sgLightCount || lightsKernelScale != e.sgKernelScale) {
+      environmentLights->record(cmd, *environmentMap, e.sgLightCount, e.sgKernelScale, &profiler);
+      lightsCount = e.sgLightCount;
+      lightsKernelScale = e.sgKernelScale;
+    }
+    environmentLights->shade(cmd, gbuffer, camera, *environmentImages, &profiler);
+  } else {
+    EnvFisShade::Inputs in;
+    in.map = &environmentMap->map();
+    in.sampler = environmentMap->sampler().handle();
+    in.mapSize = environmentMap->size();
+    in.levels = environmentMap->levels();
+    in.sh = &environmentMap->sh();
+    in.sampleCount = e.sampleCount;
+    in.mode = static_cast<EnvFisShade::Mode>(e.sampling);
+    in.brdf = static_cast<EnvFisShade::Brdf>(e.brdf);
+    in.wardAnisotropy = e.wardAnisotropy;
+    in.kernelExtent = e.kernelScale;
+    environmentShade->record(cmd, gbuffer, camera, in, *environmentImages, &profiler);
+  }
   engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                         VK_ACCESS_2_MEMORY_READ_BIT);
@@ -495,6 +514,7 @@ Status IndirectLighting::setEnvironment(const EnvironmentImage& e) {
     if (!impl_->environmentMap) {
       impl_->environmentMap.emplace(impl_->ctx, impl_->settings.environment.mapSize);
       impl_->environmentShade.emplace(impl_->ctx);
+      impl_->environmentLights.emplace(impl_->ctx, impl_->settings.environment.mapSize);
       impl_->environmentImages = createIndirectImages(impl_->ctx, impl_->width, impl_->height);
     }
     impl_->environmentMap->upload(impl_->ctx, image);  // keeps the earlier one on failure

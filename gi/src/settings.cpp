@@ -70,6 +70,18 @@ std::string validateSettings(const Settings& s) {
   if (!(a.f0Tolerance >= 0.0f && a.f0Tolerance <= 1.0f))
     return field("adaptive.f0Tolerance", std::to_string(a.f0Tolerance), "is outside [0, 1]");
   const EnvironmentSettings& e = s.environment;
+  if (uint32_t(e.method) > uint32_t(EnvironmentMethod::SgLights))
+    return field("environment.method", std::to_string(uint32_t(e.method)),
+                 "is not Fis or SgLights");
+  if (e.sgLightCount < 1 || e.sgLightCount > 4096)
+    return field("environment.sgLightCount", std::to_string(e.sgLightCount),
+                 "is outside [1, 4096]");
+  if (!(e.sgKernelScale >= 1.0f && e.sgKernelScale <= float(e.sgLightCount)))
+    return field("environment.sgKernelScale", std::to_string(e.sgKernelScale),
+                 ("is outside [1, sgLightCount = " + std::to_string(e.sgLightCount) + "]").c_str());
+  if (e.method == EnvironmentMethod::SgLights && e.brdf != EnvironmentBrdf::Ggx)
+    return field("environment.brdf", std::to_string(uint32_t(e.brdf)),
+                 "is not Ggx: SG lights shade the G-buffer's GGX only");
   if (e.sampleCount < 1 || e.sampleCount > 4096)
     return field("environment.sampleCount", std::to_string(e.sampleCount), "is outside [1, 4096]");
   if (uint32_t(e.sampling) > uint32_t(EnvironmentSampling::Randomised))

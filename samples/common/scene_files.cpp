@@ -25,11 +25,12 @@ engine::Scene loadScene(const std::string& name) {
   return engine::loadGltf(name);
 }
 
-engine::ImageRgba32f loadEnvironment(const std::string& name) {
+engine::ImageRgba32f loadEnvironment(const std::string& name, uint32_t builtinWidth) {
   const std::vector<std::string> builtins = engine::builtinEnvironmentNames();
   if (std::find(builtins.begin(), builtins.end(), name) != builtins.end())
-    return engine::makeBuiltinEnvironment(name);
-  if (!std::filesystem::is_regular_file(name)) {
+    return engine::makeBuiltinEnvironment(name, builtinWidth);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(name, ec)) {
     std::string list;
     for (const std::string& b : builtins) list += (list.empty() ? "" : ", ") + b;
     throw engine::Error("--environment: '" + name + "' is neither a built-in environment (" + list +

@@ -16,10 +16,10 @@ namespace samples {
 bool isBuiltinScene(const std::string& name);
 // Throws engine::Error("--scene: ...") for anything that is neither.
 engine::Scene loadScene(const std::string& name);
-// The --environment argument: a built-in environment's name (engine/environments.h, 1024 x 512)
-// or an equirectangular image file OpenImageIO reads (HDR, EXR, ...), y up. Throws
-// engine::Error naming the argument or the file.
-engine::ImageRgba32f loadEnvironment(const std::string& name);
+// The --environment argument: a built-in environment's name (engine/environments.h, made
+// builtinWidth x builtinWidth / 2) or an equirectangular image file OpenImageIO reads (HDR, EXR,
+// ...), y up. Throws engine::Error naming the argument or the file.
+engine::ImageRgba32f loadEnvironment(const std::string& name, uint32_t builtinWidth = 1024);
 // The scene's first camera (or the default framing) for a width x height image.
 engine::View sceneView(const engine::Scene& scene, uint32_t width, uint32_t height);
 // Creates `dir` (and parents); throws engine::Error naming it on failure.

@@ -96,8 +96,13 @@ int run(const render::Options& o) {
   if (indirect && environment) {
     samples::check(indirect->setEnvironment(
         {uint32_t(environment->width), uint32_t(environment->height), environment->pixels.data()}));
-    std::printf("environment: %s, %dx%d, FIS with %u samples per pixel\n", o.environment.c_str(),
-                environment->width, environment->height, o.gi.environment.sampleCount);
+    const gi::EnvironmentSettings& e = o.gi.environment;
+    if (e.method == gi::EnvironmentMethod::SgLights)
+      std::printf("environment: %s, %dx%d, %u SG lights\n", o.environment.c_str(),
+                  environment->width, environment->height, e.sgLightCount);
+    else
+      std::printf("environment: %s, %dx%d, FIS with %u samples per pixel\n", o.environment.c_str(),
+                  environment->width, environment->height, e.sampleCount);
   }
 
   engine::GpuProfiler profiler(ctx);

@@ -62,6 +62,9 @@ const char* usage() {
          "environment light (docs/techniques/environment.md):\n"
          "  --environment NAME|FILE  a built-in environment (sky, studio, white) or an\n"
          "                       equirectangular HDR/EXR file, y up (default: none)\n"
+         "  --env-method NAME    fis (filtered importance sampling, default) or sg (SG lights\n"
+         "                       sampled from the environment)\n"
+         "  --env-lights N       SG lights, 1..4096 (default 64)\n"
          "  --env-samples N      FIS samples per pixel, 1..4096 (default 40)\n"
          "  --env-sampling MODE  filtered (default), unfiltered or randomised\n"
          "  --env-brdf NAME      ggx (the G-buffer's, default), phong or ward\n";
@@ -155,6 +158,12 @@ Options parseOptions(int argc, char** argv) {
       o.gi.adaptive.coarsestLevel = parseUint(arg, args.value(), 0, 3);
     else if (arg == "--environment")
       o.environment = args.value();
+    else if (arg == "--env-method")
+      o.gi.environment.method = parseChoice<gi::EnvironmentMethod>(
+          arg, args.value(),
+          {{"fis", gi::EnvironmentMethod::Fis}, {"sg", gi::EnvironmentMethod::SgLights}});
+    else if (arg == "--env-lights")
+      o.gi.environment.sgLightCount = parseUint(arg, args.value(), 1, 4096);
     else if (arg == "--env-samples")
       o.gi.environment.sampleCount = parseUint(arg, args.value(), 1, 4096);
     else if (arg == "--env-sampling")

@@ -18,7 +18,9 @@
 #include "passes/env_fis.h"
 #include "reference/env_fis_reference.h"
 #include "reference/env_map_reference.h"
+#include "relative_rms.h"
 #include "shared/environment.h"
+#include "sphere_gbuffer.h"
 
 namespace {
 
@@ -45,13 +47,8 @@ glm::dvec3 stripedEnvironment(glm::dvec3 w) {
 }
 
 // The G-buffer material of a pixel.
-struct Material {
-  glm::dvec3 albedo;
-  double roughness;
-  glm::dvec3 f0;
-  double f90;
-};
-using MaterialFunction = std::function<Material(uint32_t x, uint32_t y)>;
+using Material = testing_gpu::SphereMaterial;
+using MaterialFunction = testing_gpu::SphereMaterialFunction;
 
 // Roughness 0.03 .. 1 left to right; top half a dielectric (F0 0.04, F90 1, coloured albedo),
 // bottom half a metal (coloured F0, F90 0.8, no albedo).
@@ -59,19 +56,6 @@ Material sweepMaterial(uint32_t x, uint32_t y) {
   const double roughness = 0.03 + 0.97 * x / (kWidth - 1.0);
   if (y < kHeight / 2) return {{0.7, 0.5, 0.3}, roughness, glm::dvec3(0.04), 1.0};
   return {glm::dvec3(0.0), roughness, {0.95, 0.7, 0.4}, 0.8};
-}
-
-uint16_t snorm16(double v) {
-  return static_cast<uint16_t>(
-      static_cast<int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * 32767.0)));
-}
-
-// Octahedral encoding (common/octahedral.glsl) in double.
-glm::dvec2 octEncode(glm::dvec3 n) {
-  const glm::dvec2 p = glm::dvec2(n.x, n.y) / (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
-  if (n.z > 0.0) return p;
-  const glm::dvec2 sign(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
-  return (1.0 - glm::abs(glm::dvec2(p.y, p.x))) * sign;
 }
 
 struct Shaded {
@@ -83,11 +67,9 @@ class EnvFisTest : public testing_gpu::GpuTest {
   void SetUp() override {
     testing_gpu::GpuTest::SetUp();
     if (IsSkipped()) return;
-    // An elevated camera: a few visible normals have z < 0 (the basis' seam is exercised) and
-    // the mirror directions cover both layers of the map.
-    const glm::vec3 eye(0.0f, 1.2f, 3.0f);
-    view_ = engine::makeView(engine::lookAlong(eye, -eye, {0.0f, 1.0f, 0.0f}),
-                             engine::perspectiveVulkan(0.75f, 1.0f, 0.1f, 100.0f), kWidth, kHeight);
+    // A few visible normals have z < 0 (the basis' seam is exercised) and the mirror directions
+    // cover both layers of the map.
+    view_ = testing_gpu::sphereView(kWidth, kHeight);
     sampler_ = engine::Sampler(ctx(), VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     shBuffer_ = engine::Buffer(ctx(), sizeof(gpu::EnvSh), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                engine::MemoryUsage::Upload);
@@ -96,41 +78,8 @@ class EnvFisTest : public testing_gpu::GpuTest {
   // Ray-sphere (unit sphere at the origin) per pixel centre, encoded as gbuffer_resolve.comp
   // stores it, uploaded, and decoded back for the twin.
   void makeGBuffer(const MaterialFunction& material) {
-    gbuffer_ = std::make_unique<engine::GBuffer>(engine::createGBuffer(ctx(), kWidth, kHeight));
-    const size_t count = size_t{kWidth} * kHeight;
-    std::vector<float> depth(count, 1.0f);
-    std::vector<uint16_t> normal(2 * count, 0), diffuse(4 * count, 0), specular(4 * count, 0);
-    const glm::dmat4 viewProj(view_.viewProj);
-    for (uint32_t y = 0; y < kHeight; ++y)
-      for (uint32_t x = 0; x < kWidth; ++x) {
-        const size_t i = size_t{y} * kWidth + x;
-        const engine::CameraRay ray = engine::cameraRayReference(view_, glm::dvec2(x, y) + 0.5);
-        const double b = glm::dot(ray.origin, ray.dir);
-        const double disc = b * b - (glm::dot(ray.origin, ray.origin) - 1.0);
-        if (disc <= 0.0) continue;
-        const glm::dvec3 p = ray.origin + (-b - std::sqrt(disc)) * ray.dir;
-        const glm::dvec4 clip = viewProj * glm::dvec4(p, 1.0);
-        depth[i] = static_cast<float>(clip.z / clip.w);
-        const glm::dvec2 e = octEncode(glm::normalize(p));
-        normal[2 * i] = snorm16(e.x);
-        normal[2 * i + 1] = snorm16(e.y);
-        const Material m = material(x, y);
-        for (int c = 0; c < 3; ++c) {
-          diffuse[4 * i + c] = glm::packHalf1x16(static_cast<float>(m.albedo[c]));
-          specular[4 * i + c] = glm::packHalf1x16(static_cast<float>(m.f0[c]));
-        }
-        diffuse[4 * i + 3] = glm::packHalf1x16(static_cast<float>(m.roughness));
-        specular[4 * i + 3] = glm::packHalf1x16(static_cast<float>(m.f90));
-      }
-    gbuffer_->depth.upload(ctx(), depth.data(), depth.size() * sizeof(float));
-    gbuffer_->normal.upload(ctx(), normal.data(), normal.size() * sizeof(uint16_t));
-    gbuffer_->diffuse.upload(ctx(), diffuse.data(), diffuse.size() * sizeof(uint16_t));
-    gbuffer_->specular.upload(ctx(), specular.data(), specular.size() * sizeof(uint16_t));
-    ctx().submitAndWait([&](VkCommandBuffer cmd) {
-      for (engine::Image* image :
-           {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
-        engine::imageBarrier(cmd, *image, VK_IMAGE_LAYOUT_GENERAL);
-    });
+    gbuffer_ =
+        std::make_unique<engine::GBuffer>(testing_gpu::sphereGBuffer(ctx(), view_, material));
     decoded_ = engine::readbackGBuffer(ctx(), *gbuffer_);
   }
 
@@ -347,16 +296,8 @@ TEST_F(EnvFisTest, MatchesTwin) {
     }
 }
 
-// Relative RMS, sqrt(sum (a - b)^2 / sum b^2), over the sphere's pixels and channels.
-struct RmsSums {
-  double error2 = 0.0, value2 = 0.0;
-  void add(glm::dvec3 got, glm::dvec3 want) {
-    const glm::dvec3 d = got - want;
-    error2 += glm::dot(d, d);
-    value2 += glm::dot(want, want);
-  }
-  double relative() const { return std::sqrt(error2 / value2); }
-};
+// Relative RMS over the sphere's pixels and channels.
+using RmsSums = testing_common::RelativeRms;
 
 // FIS (Filtered, 40 samples, GGX) on the sphere against the converged Monte Carlo reference of
 // the TRUE smooth environment. Bounds: glossy relative RMS below 6 %, diffuse (nine-term SH of

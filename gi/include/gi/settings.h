@@ -154,17 +154,27 @@ enum class EnvironmentSampling : uint32_t {
   Unfiltered = 1,  // level 0: the aliasing the filter removes (comparison)
   Randomised = 2,  // level 0, the sample set rotated per pixel: noise instead of aliasing
 };
+// How the environment is shaded: filtered importance sampling per pixel ([S1], [S2]), or N SG
+// lights sampled from the environment like the VSGLs from the RSM (the Fibonacci lattice,
+// hierarchical warping and the modified-FIS kernel) and shaded with the SG lighting of the VSGL
+// path (docs/techniques/environment.md, pass 4).
+enum class EnvironmentMethod : uint32_t { Fis = 0, SgLights = 1 };
 // The lobe sampled and shaded for the glossy term. Ggx is the G-buffer's BRDF (brdf.glsl);
 // Phong (exponent 2 / alpha^2 - 2) and Ward (alpha_x = alpha, alpha_y = alpha x wardAnisotropy)
 // reflect a constant F0 and exist to compare the samplers of [S1] and [S2].
 enum class EnvironmentBrdf : uint32_t { Ggx = 0, Phong = 1, Ward = 2 };
 
 struct EnvironmentSettings {
+  EnvironmentMethod method = EnvironmentMethod::Fis;
+  // SgLights: lights N, [1, 4096], generated once per environment and count; shading costs
+  // ~ N x pixels. Their kernels hold sgKernelScale / N of the luminance, [1, N] ([S3]'s K).
+  uint32_t sgLightCount = 64;
+  float sgKernelScale = 1.0f;
   // FIS samples per pixel N, [1, 4096] ([S2]: 24-50 look right). Cost ~ N x pixels.
   uint32_t sampleCount = 40;
   EnvironmentSampling sampling = EnvironmentSampling::Filtered;
-  EnvironmentBrdf brdf = EnvironmentBrdf::Ggx;
-  float wardAnisotropy = 1.0f;  // alpha_y / alpha_x of the Ward lobe, [0.01, 100]
+  EnvironmentBrdf brdf = EnvironmentBrdf::Ggx;  // SgLights: Ggx only
+  float wardAnisotropy = 1.0f;                  // alpha_y / alpha_x of the Ward lobe, [0.01, 100]
   // K of the level rule l = max(log4(K S^2 / (N p r)), 0), [1, 16] ([S2]: 4). Larger =
   // blurrier, less aliasing. No cost.
   float kernelScale = 4.0f;

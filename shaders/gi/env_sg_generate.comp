@@ -1,0 +1,122 @@
+#version 460
+// SG lights from the environment by modified filtered importance sampling, one thread per light
+// (docs/techniques/environment.md pass 4; vsgl-math.md sections 3, 5.3 and 6, the VSGL path of
+// vsgl_generate.comp on the environment's luminance x solid-angle PDF):
+//   Fibonacci lattice point i of N -> a split between the two layers by their PDF mass, then the
+//   hierarchical warp down the chosen layer's PDF quadtree -> the kernel level at which the
+//   kernel holds K / N of the PDF mass (bisection, trilinear) -> the kernel's sums at that level
+//   -> axis and Banerjee sharpness from the luminance-weighted mean direction, amplitude from
+//   the light's share of the radiance integral, Phi = M m_top rgb~ / (N m~) (derived in
+//   gi/src/reference/env_sg_reference.h), times 4 pi / sum w over S(sharpness).
+// Trilinear reads are done by hand from texelFetch with exact fp32 weights, as in
+// vsgl_generate.comp. CPU twin: gi::generateEnvSgLightsReference.
+//
+// This work is based on:
+//   [S3]  Tokuyoshi, "Modified Filtered Importance Sampling for Virtual Spherical Gaussian
+//         Lights", 2016 (Eqs. 2, 3 and 5: kernels of mass K / N, the estimator f~ / (N p~)).
+//   [C05] Clarberg et al., "Wavelet Importance Sampling", 2005 (hierarchical warping).
+//   [B05] Banerjee et al., 2005 (the vMF sharpness estimate of a mean resultant length).
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/vsgl.h"
+#include "shared/env_sg.h"
+#include "common/vsgl_lobes.glsl"
+#include "common/sg.glsl"
+
+layout(local_size_x = ENV_SG_GENERATE_GROUP) in;
+
+layout(binding = 0) uniform sampler2DArray radiancePyramid;   // ENV_SG_RADIANCE
+layout(binding = 1) uniform sampler2DArray directionPyramid;  // ENV_SG_DIRECTION
+layout(std430, binding = 2) writeonly buffer Lights { EnvSgLight lights[]; };
+layout(push_constant) uniform Push { EnvSgGeneratePush pc; };
+
+// The layer that the warp walks (lattice_warp.glsl's pdfTexel has no layer argument).
+int gLayer = 0;
+
+// The PDF mass m_t = w lum (per-texel mean at `level`) of a texel of gLayer.
+float pdfTexel(ivec2 texel, int level) {
+  return texelFetch(radiancePyramid, ivec3(texel, gLayer), level).a;
+}
+
+#include "common/lattice_warp.glsl"
+
+// Vulkan LINEAR filtering with CLAMP_TO_EDGE on one level of one layer, exact weights.
+vec4 bilinear(sampler2DArray s, vec2 x, int layer, int level) {
+  int n = int(pc.size) >> level;
+  vec2 t = x * float(n) - 0.5;
+  vec2 base = floor(t);
+  vec2 f = t - base;
+  ivec2 i0 = clamp(ivec2(base), ivec2(0), ivec2(n - 1));
+  ivec2 i1 = clamp(ivec2(base) + 1, ivec2(0), ivec2(n - 1));
+  vec4 top = mix(texelFetch(s, ivec3(i0, layer), level),
+                 texelFetch(s, ivec3(i1.x, i0.y, layer), level), f.x);
+  vec4 bottom = mix(texelFetch(s, ivec3(i0.x, i1.y, layer), level),
+                    texelFetch(s, ivec3(i1, layer), level), f.x);
+  return mix(top, bottom, f.y);
+}
+
+vec4 trilinear(sampler2DArray s, vec2 x, int layer, float level) {
+  level = clamp(level, 0.0, float(pc.topLevel));
+  float low = floor(level);
+  int l0 = int(low), l1 = min(l0 + 1, int(pc.topLevel));
+  return mix(bilinear(s, x, layer, l0), bilinear(s, x, layer, l1), level - low);
+}
+
+// The fraction of the whole PDF mass in a level-l kernel at x of `layer`: 4^l f~(x, l) /
+// (M m_top), f~ the kernel's mean of f_t lum (its directions' mass, those beyond the rim
+// included), m_top = the sum of the two layers' top means of m_t (M m_top = the total mass).
+float kernelMass(vec2 x, int layer, float level, float massTop) {
+  float m = float(pc.size) * float(pc.size);
+  return exp2(2.0 * level) * trilinear(directionPyramid, x, layer, level).w / (massTop * m);
+}
+
+// [S3] Eq. 3 with K: the level whose kernel holds K / N of the mass, by bisection on [0, L].
+float modifiedFisLevel(vec2 x, int layer, float massTop) {
+  float top = float(pc.topLevel);
+  float target = pc.kernelScale / float(pc.count);
+  if (!(massTop > 0.0)) return top;                              // a black environment
+  if (kernelMass(x, layer, 0.0, massTop) >= target) return 0.0;  // a spike: lights share a texel
+  if (pc.kernelScale >= float(pc.count)) return top;            // no kernel is large enough
+  float lo = 0.0, hi = top;
+  for (int step = 0; step < VSGL_BISECTION_STEPS; ++step) {
+    float mid = 0.5 * (lo + hi);
+    if (kernelMass(x, layer, mid, massTop) < target) lo = mid; else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  int topLevel = int(pc.topLevel);
+  vec2 u = fibonacciPoint(i, pc.count);
+  // The two layers' masses (top means).
+  float mass0 = texelFetch(radiancePyramid, ivec3(0, 0, 0), topLevel).a;
+  float mass1 = texelFetch(radiancePyramid, ivec3(0, 0, 1), topLevel).a;
+  float massTop = mass0 + mass1;
+  gLayer = int(split(u.x, mass0, mass1));
+  int layer = gLayer;
+  ivec2 node = warpToTexel(u, topLevel);
+  float size = float(pc.size);
+  vec2 x = min((vec2(node) + u) / size, (vec2(node) + kOneBelow) / size);
+  float level = modifiedFisLevel(x, layer, massTop);
+  vec4 radiance = trilinear(radiancePyramid, x, layer, level);    // (f L, w lum) kernel means
+  vec4 direction = trilinear(directionPyramid, x, layer, level);  // (lum dir, f lum)
+  float m = size * size;
+  EnvSgLight light;
+  light.axisSharpness = vec4(0.0, 0.0, 1.0, 0.0);
+  light.amplitude = vec4(0.0);
+  light.kernel = vec4(x, level, float(layer));
+  if (massTop > 0.0 && radiance.a > 0.0 && direction.w > 0.0) {
+    vec3 axis;
+    float sharpness;
+    lobeFromMeanAxis(direction.xyz / direction.w, axis, sharpness);
+    // Phi = (total mass / N) rgb~ / f~: the kernel's radiance per unit luminance, times the
+    // light's equal share of the mass; then the staircase rim's solid angle rescaled to 4 pi.
+    vec3 phi = (m * massTop / float(pc.count)) * (radiance.rgb / direction.w);
+    light.axisSharpness = vec4(axis, sharpness);
+    light.amplitude = vec4(phi * (pc.solidAngleScale / sgIntegral(sharpness)),
+                           2.0 * radiance.a / massTop);
+  }
+  lights[i] = light;
+}
