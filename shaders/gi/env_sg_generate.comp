@@ -5,8 +5,9 @@
 //   Fibonacci lattice point i of N -> a split between the two layers by their PDF mass, then the
 //   hierarchical warp down the chosen layer's PDF quadtree -> the kernel level at which the
 //   kernel holds K / N of the PDF mass (bisection, trilinear) -> the kernel's sums at that level
-//   -> axis and Banerjee sharpness from the luminance-weighted mean direction, amplitude from
-//   the light's share of the radiance integral, Phi = M m_top rgb~ / (N m~) (derived in
+//   -> the axis at the sample's own direction, Banerjee sharpness from the luminance-weighted
+//   mean direction, amplitude from the light's share of the radiance integral,
+//   Phi = M m_top rgb~ / (N m~) (derived in
 //   gi/src/reference/env_sg_reference.h), times 4 pi / sum w over S(sharpness).
 // Trilinear reads are done by hand from texelFetch with exact fp32 weights, as in
 // vsgl_generate.comp. CPU twin: gi::generateEnvSgLightsReference.
@@ -20,8 +21,10 @@
 
 #include "shared/vsgl.h"
 #include "shared/env_sg.h"
+#include "shared/environment.h"
 #include "common/vsgl_lobes.glsl"
 #include "common/sg.glsl"
+#include "common/env_paraboloid.glsl"
 
 layout(local_size_x = ENV_SG_GENERATE_GROUP) in;
 
@@ -108,9 +111,13 @@ void main() {
   light.amplitude = vec4(0.0);
   light.kernel = vec4(x, level, float(layer));
   if (massTop > 0.0 && radiance.a > 0.0 && direction.w > 0.0) {
-    vec3 axis;
+    // The axis: the sample's own direction (the lattice and the warp distribute it by the
+    // PDF; the kernel's mean direction would lean toward the layer's pole). The sharpness:
+    // Banerjee's, from the kernel's luminance-weighted mean direction (its spread).
+    vec3 meanAxis;
     float sharpness;
-    lobeFromMeanAxis(direction.xyz / direction.w, axis, sharpness);
+    lobeFromMeanAxis(direction.xyz / direction.w, meanAxis, sharpness);
+    vec3 axis = envParaboloidDirection(x, uint(layer));
     // Phi = (total mass / N) rgb~ / f~: the kernel's radiance per unit luminance, times the
     // light's equal share of the mass; then the staircase rim's solid angle rescaled to 4 pi.
     vec3 phi = (m * massTop / float(pc.count)) * (radiance.rgb / direction.w);

@@ -152,11 +152,13 @@ std::vector<EnvSgLightReference> generateEnvSgLightsReference(const EnvSgPyramid
     const glm::dvec4 direction =
         sampleTrilinear(pyramids.pyramids[ENV_SG_DIRECTION][warp.layer], light.x, light.level);
     if (!(massTop > 0.0) || !(radiance.a > 0.0) || !(direction.w > 0.0)) continue;  // zero
-    // Axis and Banerjee sharpness of the luminance-weighted mean direction.
-    const glm::dvec3 meanAxis = glm::dvec3(direction) / direction.w;
-    const double meanLength = glm::length(meanAxis);
+    // The axis: the sample's own direction, which the lattice and the warp distribute by the
+    // PDF. The kernel's mean direction would lean toward the layer's pole (a square kernel in
+    // paraboloid space covers more solid angle on its pole side). The sharpness: Banerjee's,
+    // from the length of the kernel's luminance-weighted mean direction (its spread).
+    const double meanLength = glm::length(glm::dvec3(direction) / direction.w);
     if (meanLength > 0.0) {
-      light.axis = meanAxis / meanLength;
+      light.axis = paraboloidToDirection(light.x, warp.layer);
       light.sharpness = banerjeeSharpness(meanLength);
     }
     // Phi = (sum m / N) rgb~ / m~, rescaled to 4 pi of solid angle, spread over S(sharpness).
