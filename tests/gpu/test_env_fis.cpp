@@ -21,6 +21,7 @@
 #include "relative_rms.h"
 #include "shared/environment.h"
 #include "sphere_gbuffer.h"
+#include "test_environments.h"
 
 namespace {
 
@@ -30,14 +31,7 @@ constexpr double kPi = std::numbers::pi;
 
 using Mode = gi::EnvFisShade::Mode;
 using Brdf = gi::EnvFisShade::Brdf;
-
-// A smooth environment: a sky gradient, a broad warm lobe and a dim ground lobe.
-glm::dvec3 smoothEnvironment(glm::dvec3 w) {
-  const glm::dvec3 sun = glm::normalize(glm::dvec3(0.5, 0.7, 0.4));
-  return glm::dvec3(0.35, 0.45, 0.6) * (0.7 + 0.3 * w.y) +
-         glm::dvec3(3.0, 2.4, 1.6) * std::exp(6.0 * (glm::dot(w, sun) - 1.0)) +
-         glm::dvec3(0.25, 0.2, 0.1) * std::exp(3.0 * (-w.y - 1.0));
-}
+using testing_common::smoothEnvironment;
 
 // High-frequency content: the smooth environment times a 3-D sine pattern of angular wavelength
 // 2 pi / 30 = 0.21 rad (6 to 11 level-0 texels of the 128^2 map), +-80 %.

@@ -34,23 +34,13 @@
 #include "reference/env_paraboloid.h"
 #include "reference/sh_irradiance.h"
 #include "shared/environment.h"
+#include "test_environments.h"
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kU = 0x1p-24;
-
-engine::ImageRgba32f equirectOf(uint32_t width, const std::function<glm::dvec3(glm::dvec3)>& f) {
-  engine::ImageRgba32f image{int(width), int(width / 2), {}};
-  image.pixels.resize(size_t{width} * (width / 2) * 4);
-  for (uint32_t y = 0; y < width / 2; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      const glm::dvec3 l = f(gi::equirectToDirection({(x + 0.5) / width, (y + 0.5) / (width / 2)}));
-      float* p = &image.pixels[(size_t{y} * width + x) * 4];
-      p[0] = float(l.x), p[1] = float(l.y), p[2] = float(l.z), p[3] = 1.0f;
-    }
-  return image;
-}
+using testing_common::equirectOf;
 
 // The 3 x 3 neighbourhood statistics of an equirect (u wraps, v clamps), as images: the local
 // maximum of |L| (difference = false) or of |L(neighbour) - L| (difference = true).

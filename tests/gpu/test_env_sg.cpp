@@ -22,38 +22,17 @@
 #include "reference/sg_math.h"
 #include "shared/env_sg.h"
 #include "sphere_gbuffer.h"
+#include "test_environments.h"
 
 namespace {
 
 constexpr uint32_t kSide = 64;
 constexpr uint32_t kMapSize = 128;
+constexpr auto smoothSky = testing_common::smoothEnvironment;
+using testing_common::equirectOf;
 constexpr double kPi = std::numbers::pi;
 
-// A sky gradient, a broad warm lobe and a dim ground lobe.
-glm::dvec3 smoothSky(glm::dvec3 w) {
-  const glm::dvec3 sun = glm::normalize(glm::dvec3(0.5, 0.7, 0.4));
-  return glm::dvec3(0.35, 0.45, 0.6) * (0.7 + 0.3 * w.y) +
-         glm::dvec3(3.0, 2.4, 1.6) * std::exp(6.0 * (glm::dot(w, sun) - 1.0)) +
-         glm::dvec3(0.25, 0.2, 0.1) * std::exp(3.0 * (-w.y - 1.0));
-}
-
-// The radiance function sampled at the pixel centres of a 2:1 equirectangular image.
-engine::ImageRgba32f equirectOf(const gi::EnvRadianceFunction& radiance, int width) {
-  engine::ImageRgba32f image;
-  image.width = width;
-  image.height = width / 2;
-  image.pixels.resize(size_t(width) * size_t(image.height) * 4);
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const glm::dvec3 d = gi::equirectToDirection({(x + 0.5) / width, (y + 0.5) / image.height});
-      const glm::dvec3 v = radiance(d);
-      float* p = &image.pixels[(size_t(y) * size_t(width) + size_t(x)) * 4];
-      p[0] = float(v.r), p[1] = float(v.g), p[2] = float(v.b), p[3] = 1.0f;
-    }
-  return image;
-}
-
-gi::EnvSgLightReference toDouble(const gpu::EnvSgLight& light) {
+gi::EnvSgLightReference referenceLight(const gpu::EnvSgLight& light) {
   gi::EnvSgLightReference out;
   out.axis = glm::dvec3(light.axisSharpness);
   out.sharpness = light.axisSharpness.w;
@@ -79,7 +58,7 @@ class EnvSgTest : public testing_gpu::GpuTest {
 
   // Converts the environment on the GPU; the twin gets the GPU's level 0.
   void setEnvironment(const gi::EnvRadianceFunction& radiance) {
-    environment_->upload(ctx(), equirectOf(radiance, 512));
+    environment_->upload(ctx(), equirectOf(512, radiance));
     ctx().submitAndWait([&](VkCommandBuffer cmd) { environment_->record(cmd); });
     const std::vector<glm::vec4> level0 = environment_->map().readbackRgba32f(ctx(), 0);
     map_ = gi::EnvMapReference{};
@@ -181,7 +160,7 @@ TEST_F(EnvSgTest, LightsMatchTwin) {
     const auto twin = gi::generateEnvSgLightsReference(pyramids_, n, k);
     double worstLevel = 0.0, worstAngle = 0.0, worstSharpness = 0.0, worstIntegral = 0.0;
     for (uint32_t i = 0; i < n; ++i) {
-      const gi::EnvSgLightReference got = toDouble(gpu[i]);
+      const gi::EnvSgLightReference got = referenceLight(gpu[i]);
       const gi::EnvSgLightReference& want = twin[i];
       ASSERT_EQ(got.layer, want.layer) << "light " << i;
       ASSERT_EQ(got.texel[0], want.texel[0]) << "light " << i;
@@ -220,7 +199,7 @@ TEST_F(EnvSgTest, ShadingMatchesTwin) {
   makeSphere();
   const std::vector<gpu::EnvSgLight> gpu = generate(256, 1.0f);
   std::vector<gi::EnvSgLightReference> lights;
-  for (const gpu::EnvSgLight& light : gpu) lights.push_back(toDouble(light));
+  for (const gpu::EnvSgLight& light : gpu) lights.push_back(referenceLight(light));
   const auto [diffuse, glossy] = shade();
   std::vector<gi::EnvShading> cpu(size_t{kSide} * kSide);
   double largest[2] = {0.0, 0.0};

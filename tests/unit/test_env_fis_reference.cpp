@@ -16,9 +16,12 @@
 #include "lcg.h"
 #include "reference/env_fis_reference.h"
 #include "reference/env_map_reference.h"
+#include "test_environments.h"
 
 namespace gi {
 namespace {
+
+using testing_common::smoothEnvironment;
 
 using testing_common::Lcg;
 
@@ -35,14 +38,6 @@ glm::dvec3 viewAt(glm::dvec3 n, double nv, double phi) {
   const LobeFrame f = lobeFrame(n);
   const double s = std::sqrt(1.0 - nv * nv);
   return f.toWorld({s * std::cos(phi), s * std::sin(phi), nv});
-}
-
-// A smooth environment: a sky gradient, a broad warm "sun" lobe and a dim ground lobe.
-glm::dvec3 smoothEnvironment(glm::dvec3 w) {
-  const glm::dvec3 sun = glm::normalize(glm::dvec3(0.5, 0.7, 0.4));
-  return glm::dvec3(0.35, 0.45, 0.6) * (0.7 + 0.3 * w.y) +
-         glm::dvec3(3.0, 2.4, 1.6) * std::exp(6.0 * (glm::dot(w, sun) - 1.0)) +
-         glm::dvec3(0.25, 0.2, 0.1) * std::exp(3.0 * (-w.y - 1.0));
 }
 
 // SH coefficients of a constant radiance L: only L_00 = 4 pi Y_00 L = 2 sqrt(pi) L.

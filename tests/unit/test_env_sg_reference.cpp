@@ -20,19 +20,13 @@
 #include "reference/env_sg_reference.h"
 #include "reference/sg_math.h"
 #include "relative_rms.h"
+#include "test_environments.h"
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr uint32_t kMapSize = 128;
-
-// A sky gradient, a broad warm lobe and a dim ground lobe (smooth: no texel-scale detail).
-glm::dvec3 smoothSky(glm::dvec3 w) {
-  const glm::dvec3 sun = glm::normalize(glm::dvec3(0.5, 0.7, 0.4));
-  return glm::dvec3(0.35, 0.45, 0.6) * (0.7 + 0.3 * w.y) +
-         glm::dvec3(3.0, 2.4, 1.6) * std::exp(6.0 * (glm::dot(w, sun) - 1.0)) +
-         glm::dvec3(0.25, 0.2, 0.1) * std::exp(3.0 * (-w.y - 1.0));
-}
+constexpr auto smoothSky = testing_common::smoothEnvironment;
 
 // The direction of a light's level-0 texel centre.
 glm::dvec3 texelDirection(const gi::EnvSgLightReference& light, uint32_t size) {

@@ -99,10 +99,7 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
 }
 
 void VsglShade::recordStatsReset(VkCommandBuffer cmd) {
-  vkCmdFillBuffer(cmd, stats_.handle(), 0, VK_WHOLE_SIZE, 0);
-  engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  engine::fillBuffer(cmd, stats_, 0);
 }
 
 void VsglShade::recordStatsReadback(VkCommandBuffer cmd) {
