@@ -326,7 +326,8 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
   const uint32_t flags =
       (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) | (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
       (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u) |
-      (plan.specularLobes ? 0u : VSGL_SHADE_DIFFUSE_LOBES) | (plan.culled ? VSGL_SHADE_CULL : 0u);
+      (plan.specularLobes ? 0u : VSGL_SHADE_DIFFUSE_LOBES) | (plan.culled ? VSGL_SHADE_CULL : 0u) |
+      (settings.planarEmitters ? VSGL_SHADE_PLANAR : 0u);
   VsglShade::Inputs shading{vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()};
   shading.cullBudget = settings.culling.budget;
   if (plan.culled) shade.recordStatsReset(cmd);

@@ -32,16 +32,14 @@ float maxReflectance(const engine::Scene& scene) {
     }
     return std::pair{float(lo) / 255.0f, float(hi) / 255.0f};
   };
-  float bound = 0.0f;
-  for (const engine::Material& m : scene.materials) {
-    // albedo = base (1 - metallic) <= base; F0 = mix(0.04, base, metallic) <= max(0.04, base).
-    float base = 0.0f;
+  // The diffuse albedo base (1 - metallic) <= base; the specular lobe reflects at most its
+  // largest F0 channel or F90 (Schlick's grazing value, which a black metal still has):
+  // maxSpecular bounds both.
+  float bound = maxSpecular(scene);
+  for (const engine::Material& m : scene.materials)
     for (int c = 0; c < 3; ++c)
-      base = std::max(base, m.baseColorFactor[c] *
-                                engine::srgbToLinear(textureRange(m.baseColorTexture, c).second));
-    const float metallicMin = m.metallicFactor * textureRange(m.metallicRoughnessTexture, 2).first;
-    bound = std::max({bound, base, metallicMin < 1.0f ? 0.04f : 0.0f});
-  }
+      bound = std::max(bound, m.baseColorFactor[c] *
+                                  engine::srgbToLinear(textureRange(m.baseColorTexture, c).second));
   return std::min(bound, 1.0f);
 }
 

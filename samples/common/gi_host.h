@@ -25,7 +25,7 @@ void check(const gi::Status& status);
 const engine::Light* bouncingLight(const engine::Scene& scene);
 
 // An upper bound of any surface's reflectance in `scene` (SceneGeometry::maxReflectance): the
-// largest channel of a diffuse albedo or F0, textures included.
+// largest channel of a diffuse albedo, F0 or F90, textures included.
 float maxReflectance(const engine::Scene& scene);
 // `gpuScene`'s buffers and images as the API's plain handles, with `scene`'s bounds and
 // reflectance bound.

@@ -58,6 +58,8 @@ const char* usage() {
          "off;\n"
          "                       docs/techniques/vsgl-culling.md)\n"
          "  --culling-budget T   that budget, the light a pixel may lose, 0..0.5 (default 0.01)\n"
+         "  --planar-emitters on|off  flat VSGLs emit nothing below or along their plane\n"
+         "                       (default on; docs/techniques/planar-emitters.md)\n"
          "  --debug-vsgl N       VSGL whose visibility is drawn (default: the most powerful)\n"
          "environment light (docs/techniques/environment.md):\n"
          "  --environment NAME|FILE  a built-in environment (sky, studio, white) or an\n"
@@ -180,6 +182,9 @@ Options parseOptions(int argc, char** argv) {
                                             {"ward", gi::EnvironmentBrdf::Ward}});
     else if (arg == "--culling")
       o.gi.culling.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
+    else if (arg == "--planar-emitters")
+      o.gi.planarEmitters =
+          parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--culling-budget")
       o.gi.culling.budget = parseFloat(arg, args.value(), 0.0f, 0.5f);
     else if (arg == "--adaptive-tolerance")

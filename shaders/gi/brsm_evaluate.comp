@@ -83,7 +83,8 @@ void main() {
         vec4 meanVariance = tileMeanVariance[j];
         vec4 axisSharpness = tileAxisSharpness[j];
         Sg incoming = vsglIncomingRadiance(meanVariance.xyz, meanVariance.w, axisSharpness.xyz,
-                                           axisSharpness.w, tileLogScale[j], receiver);
+                                           axisSharpness.w, tileLogScale[j], receiver,
+                                           vec4(0.0, 0.0, 0.0, 1.0));
         sums.x += sgInnerProduct(incoming, diffuseLobe, diffuseLogNorm);
         sums.y += sgInnerProduct(incoming, glossyLobe, glossyLogNorm);
       }

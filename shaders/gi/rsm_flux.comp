@@ -7,6 +7,7 @@
 #include "shared/rsm_flux.h"
 #include "common/color.glsl"
 #include "common/camera_ray.glsl"
+#include "common/octahedral.glsl"
 
 layout(local_size_x = RSM_GROUP_X, local_size_y = RSM_GROUP_Y) in;
 
@@ -16,7 +17,11 @@ layout(binding = 2, rgba16f) uniform readonly image2D gSpecular;
 layout(binding = 3, rgba32f) uniform writeonly image2D outPosition;
 layout(binding = 4, rgba32f) uniform writeonly image2D outDiffuse;
 layout(binding = 5, rgba32f) uniform writeonly image2D outSpecular;
+layout(binding = 6, rg16_snorm) uniform readonly image2D gNormal;
+layout(std430, binding = 7) readonly buffer SgGgxAlbedoTable { vec2 kSgGgxAlbedo[]; };
 layout(push_constant) uniform Push { RsmFluxPush pc; };
+
+#include "common/sg_lighting.glsl"
 
 void main() {
   uvec2 texel = gl_GlobalInvocationID.xy;
@@ -39,8 +44,19 @@ void main() {
   }
   float lit = luminance(incident) > 0.0 ? 1.0 : 0.0;
   vec4 diffuseRough = imageLoad(gDiffuse, coord);
-  vec3 f0 = imageLoad(gSpecular, coord).rgb;
+  vec4 specular = imageLoad(gSpecular, coord);  // F0, F90
+  // The specular lobe's directional albedo for light arriving from the light (brdf.glsl's lobe,
+  // the table of common/sg_lighting.glsl): the share of Phi_in it reflects, Fresnel (F0 and F90)
+  // and masking included, as the receiver side's glossy term reflects it.
+  // Unlit texels (background, outside the cone) keep 0: their offset may be 0.
+  vec3 albedo = vec3(0.0);
+  if (lit > 0.0) {
+    vec3 toLight = pc.perspective != 0u ? -normalize(offset) : -pc.axis.xyz;
+    float nl = max(dot(octDecode(imageLoad(gNormal, coord).rg), toLight), kSgGgxMinViewCosine);
+    vec2 table = ggxSpecularAlbedo(nl, max(diffuseRough.a * diffuseRough.a, 1e-3));
+    albedo = specular.a * table.x + specular.rgb * (table.y - table.x);
+  }
   imageStore(outPosition, coord, vec4(offset * lit, lit));
   imageStore(outDiffuse, coord, vec4(diffuseRough.rgb * incident, luminance(incident)));
-  imageStore(outSpecular, coord, vec4(f0 * incident, diffuseRough.a * lit));
+  imageStore(outSpecular, coord, vec4(albedo * incident, diffuseRough.a * lit));
 }

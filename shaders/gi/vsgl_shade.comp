@@ -1,7 +1,8 @@
 #version 460
 // VSGL shading (shaders/shared/vsgl_shade.h, vsgl-math.md sections 4.1-4.5): per G-buffer pixel,
 //   L_o = sum_k V_k sum_{lobe} E e^(l_p) [rho D(lambda_p, xi_p . n) + Lambda_s]
-// with the incoming-radiance SG of each lobe (section 4.1), the [T24] SG x clamped-cosine
+// with the incoming-radiance SG of each lobe (section 4.1; flat clusters as planar emitters,
+// common/vsgl_emitter.glsl), the [T24] SG x clamped-cosine
 // integral D for the diffuse term and the SG x GGX integral for the glossy one
 // (common/sg_lighting.glsl), and V_k the imperfect-shadow-map test of common/ism_lookup.glsl.
 // The CPU twin is gi/src/reference/vsgl_shade_reference.cpp.
@@ -42,16 +43,17 @@ layout(constant_id = 0) const uint kFlags = VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIB
 #include "common/ism_lookup.glsl"
 #include "common/sg_lighting.glsl"
 #include "common/vsgl_bound.glsl"
+#include "common/vsgl_emitter.glsl"
 
 // Per-lobe constants, computed once by the lane that loads the VSGL. rgb = power / its largest
-// component (the lobe's colour), a = log(largest component / (2 pi S(sharpness))), the scale of
-// E kept as a logarithm so that it meets the SG product's tiny amplitude inside one exp()
-// (section 4.2); -inf for a lobe without power.
-vec4 colourLogScale(VsglLobe lobe) {
+// component (the lobe's colour), a = log(largest component / (2 pi)) - logNormalisation, the
+// scale of E kept as a logarithm so that it meets the SG product's tiny amplitude inside one
+// exp() (section 4.2); -inf for a lobe without power.
+vec4 colourLogScale(VsglLobe lobe, float logNormalisation) {
   float largest = max(lobe.power.r, max(lobe.power.g, lobe.power.b));
-  return largest > 0.0 ? vec4(lobe.power.rgb / largest, log(largest) - log(2.0 * kSgPi) -
-                                                            log(sgIntegral(lobe.axisSharpness.w)))
-                       : vec4(0.0, 0.0, 0.0, -1.0 / 0.0);
+  return largest > 0.0
+             ? vec4(lobe.power.rgb / largest, log(largest) - log(2.0 * kSgPi) - logNormalisation)
+             : vec4(0.0, 0.0, 0.0, -1.0 / 0.0);
 }
 
 // One lobe as the loop sees it: the lane's own VSGL, or lane j's after a broadcast.
@@ -61,8 +63,15 @@ struct ShadeLobe {
   vec4 colourLogScale;
 };
 
-ShadeLobe shadeLobe(VsglLobe lobe) {
-  return ShadeLobe(lobe.meanVariance, lobe.axisSharpness, colourLogScale(lobe));
+// The diffuse lobe's normalisation depends on the receiver (vsglLambertianRadiance): its scale
+// leaves it out.
+ShadeLobe diffuseShadeLobe(VsglLobe lobe) {
+  return ShadeLobe(lobe.meanVariance, lobe.axisSharpness, colourLogScale(lobe, 0.0));
+}
+
+ShadeLobe specularShadeLobe(VsglLobe lobe, vec4 plane) {
+  return ShadeLobe(lobe.meanVariance, lobe.axisSharpness,
+                   colourLogScale(lobe, log(vsglSpecularNormalisation(lobe, plane))));
 }
 
 ShadeLobe broadcastLobe(ShadeLobe lobe, uint lane) {
@@ -115,12 +124,10 @@ VsglReceivers subgroupReceivers(bool shaded, vec3 position, vec3 normal, vec3 vi
   return r;
 }
 
-// Adds one lobe's indirect light, times the VSGL's visibility, to the pixel's sums.
-void addLobe(ShadeLobe lobe, float visibility, vec3 receiver, vec3 normal, bool glossy,
+// Adds one lobe's indirect light (its incoming radiance SG), times the VSGL's visibility, to the
+// pixel's sums.
+void addLobe(ShadeLobe lobe, Sg radiance, float visibility, vec3 normal, bool glossy,
              SgGgxReceiver ggx, inout vec3 diffuseSum, inout vec3 glossySum) {
-  Sg radiance = vsglIncomingRadiance(lobe.meanVariance.xyz, lobe.meanVariance.w,
-                                     lobe.axisSharpness.xyz, lobe.axisSharpness.w,
-                                     lobe.colourLogScale.a, receiver);
   float amplitude = exp(min(radiance.logAmplitude, VSGL_SHADE_MAX_LOG_RADIANCE));
   if (amplitude == 0.0) return;  // no power, or an overlap below fp32 range
   vec3 e = (visibility * amplitude) * lobe.colourLogScale.rgb;
@@ -203,17 +210,24 @@ void main() {
   for (uint first = 0u; first < pc.vsglCount; first += lanes) {
     uint count = min(lanes, pc.vsglCount - first);
     Vsgl mine = vsgls[first + min(gl_SubgroupInvocationID, count - 1u)];
-    ShadeLobe myDiffuse = shadeLobe(mine.diffuse);
-    ShadeLobe mySpecular = shadeLobe(mine.specular);
+    vec4 myPlane = vsglEmitterPlane(mine, (kFlags & VSGL_SHADE_PLANAR) != 0u);
+    ShadeLobe myDiffuse = diffuseShadeLobe(mine.diffuse);
+    ShadeLobe mySpecular = specularShadeLobe(mine.specular, myPlane);
     IsmFrame myFrame = ismFrame(mine, pc.ism.centreOffset);
     bool valid = gl_SubgroupInvocationID < count;
     uvec4 keep = subgroupBallot(valid);
     if (culled) {
       vec3 light = (modulate ? diffuseSum * diffuseRoughness.rgb : diffuseSum) + glossySum;
       float budget = pc.eye.w * subgroupMin(shaded ? largestChannel(light) : 3.0e38) - skippedBound;
-      vec2 bound = vsglLobeBound(myDiffuse.meanVariance.xyz, myDiffuse.meanVariance.w,
-                                 myDiffuse.axisSharpness.xyz, myDiffuse.axisSharpness.w,
-                                 myDiffuse.colourLogScale.a, group);
+      // The diffuse lobe's emission sharpness lies in [(1 - beta) lambda, lambda] and its N is
+      // least at lambda: the bound takes the widest emission with the least N. Foreshortening
+      // only lowers the light (f <= 1, docs/techniques/planar-emitters.md).
+      float diffuseSharpness = myDiffuse.axisSharpness.w;
+      vec2 bound = vsglLobeBound(
+          myDiffuse.meanVariance.xyz, myDiffuse.meanVariance.w, myDiffuse.axisSharpness.xyz,
+          myPlane.w * diffuseSharpness,
+          myDiffuse.colourLogScale.a - log(vsglLambertianNormalisation(diffuseSharpness, myPlane)),
+          group);
       if ((kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u)
         bound += vsglLobeBound(mySpecular.meanVariance.xyz, mySpecular.meanVariance.w,
                                mySpecular.axisSharpness.xyz, mySpecular.axisSharpness.w,
@@ -235,13 +249,24 @@ void main() {
       ShadeLobe diffuseLobe = broadcastLobe(myDiffuse, j);
       ShadeLobe specularLobe = broadcastLobe(mySpecular, j);
       IsmFrame frame = broadcastFrame(myFrame, j);
+      vec4 plane = subgroupBroadcast(myPlane, j);
       if (!shaded) continue;
       // One test per VSGL: both lobes share its map.
       float visibility = shadowed ? ismVisibility(pc.ism, frame, first + j, receiver, normal) : 1.0;
       if (visibility == 0.0) continue;
-      addLobe(diffuseLobe, visibility, receiver, normal, glossy, ggx, diffuseSum, glossySum);
-      if ((kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u)
-        addLobe(specularLobe, visibility, receiver, normal, glossy, ggx, diffuseSum, glossySum);
+      Sg diffuseRadiance = vsglLambertianRadiance(
+          diffuseLobe.meanVariance.xyz, diffuseLobe.meanVariance.w, diffuseLobe.axisSharpness.xyz,
+          diffuseLobe.axisSharpness.w, diffuseLobe.colourLogScale.a, receiver, normal, plane);
+      addLobe(diffuseLobe, diffuseRadiance, visibility, normal, glossy, ggx, diffuseSum,
+              glossySum);
+      if ((kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u) {
+        Sg specularRadiance = vsglIncomingRadiance(
+            specularLobe.meanVariance.xyz, specularLobe.meanVariance.w,
+            specularLobe.axisSharpness.xyz, specularLobe.axisSharpness.w,
+            specularLobe.colourLogScale.a, receiver, plane);
+        addLobe(specularLobe, specularRadiance, visibility, normal, glossy, ggx, diffuseSum,
+                glossySum);
+      }
     }
   }
   bool counted = culled && subgroupAny(shaded);

@@ -41,7 +41,8 @@ void main() {
     lobeFromMeanAxis(p.a.xyz, axis, sharpness);
     x = vec4(axis, sharpness);
   } else if (p.function == SG_PROBE_VSGL_RADIANCE) {
-    Sg s = vsglIncomingRadiance(p.a.xyz, p.a.w, p.b.xyz, p.b.w, p.c.w, p.c.xyz);
+    Sg s = vsglIncomingRadiance(p.a.xyz, p.a.w, p.b.xyz, p.b.w, p.c.w, p.c.xyz,
+                                vec4(0.0, 0.0, 0.0, 1.0));
     x = vec4(s.axis, s.sharpness);
     y.x = s.logAmplitude;
   } else if (p.function == SG_PROBE_GGX_REFLECTION) {

@@ -3,7 +3,9 @@
 //   incident flux  Phi_in = I(theta) * A * cos^3(theta)   (spot; A = texel area on the plane at
 //                  unit distance, cos^3 = solid-angle Jacobian of that plane)
 //                  Phi_in = E * texel area                (directional, orthographic RSM)
-//   reflected flux Phi_d = albedo * Phi_in,  Phi_s = F0 * Phi_in
+//   reflected flux Phi_d = albedo * Phi_in,  Phi_s = A(n . l) * Phi_in, A the specular lobe's
+//                  directional albedo F90 A0 + F0 (A1 - A0) from the GGX table of
+//                  common/sg_lighting.glsl at the light's incidence (Fresnel and masking in it)
 // Images written (all R32G32B32A32_SFLOAT):
 //   position  xyz = VPL position minus the RSM origin (the light position, or the eye of the
 //             directional light's orthographic view), w = 1 for a VPL with power, else 0

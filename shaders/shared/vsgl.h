@@ -12,6 +12,12 @@
 // Per-VPL lobe encodings (section 3.3): the diffuse lobe is the vMF fitted to the Lambert pdf,
 // sharpness 2.292504, whose Banerjee mean length is this constant.
 #define VSGL_DIFFUSE_LOBE_LENGTH 0.5749255543539332
+// Planar emitters (docs/techniques/planar-emitters.md): a cluster's planarity is read from its
+// diffuse lobe's sharpness, between that of a 90 degree corner (two equal texels at right angles:
+// Banerjee's estimate at 0.57492555 / sqrt 2) and that of one texel (Banerjee's estimate at
+// VSGL_DIFFUSE_LOBE_LENGTH), where the cluster is flat.
+#define VSGL_CORNER_SHARPNESS 1.3805819183117323
+#define VSGL_FLAT_SHARPNESS 2.2925040
 // Sharpness clamp: Banerjee's estimate diverges as the mean length -> 1 (one VPL, or identical
 // axes); 2^41 keeps products with other sharpnesses finite in fp32 (section 12, case 7).
 #define VSGL_MAX_SHARPNESS 2199023255552.0

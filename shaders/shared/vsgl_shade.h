@@ -24,7 +24,11 @@
 // most VsglShadePush::eye.w of the least light gathered so far are skipped; counts in
 // VsglShadeStats.
 #define VSGL_SHADE_CULL 32u
-#define VSGL_SHADE_VARIANTS 64u  // every combination of the flags
+// Planar emitters (docs/techniques/planar-emitters.md, Settings::planarEmitters): flat clusters
+// emit no light below or along their plane and are seen foreshortened. Off: the SG emitter of
+// vsgl-math.md section 3.4 for every VSGL.
+#define VSGL_SHADE_PLANAR 64u
+#define VSGL_SHADE_VARIANTS 128u  // every combination of the flags
 // Incoming-radiance log amplitudes are clamped here before exp(): e^80 ~ 5.5e34 keeps a
 // receiver touching a zero-variance lobe finite (vsgl-math.md section 12, case 12) and, unlike
 // +inf, never turns into NaN when multiplied by a zero lighting integral.

@@ -137,7 +137,7 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
     r.f0 = s.f0;
     r.f90 = s.f90;
     r.roughness = s.roughness;
-    return gi::shadeReference(r, vsgls_, true);
+    return gi::shadeReference(r, vsgls_, true, false);
   }
 
   engine::Scene scene_;

@@ -328,14 +328,20 @@ TEST_F(IndirectLightingApiTest, PlannerSkipsEveryPassWhenNothingCanBounce) {
   dark.light.intensity = 0.0f;
   expectSame(dark, geometry(), "light: no power");
 
-  engine::Scene black = scene_;  // black metal: no diffuse albedo and F0 = 0
+  // A black dielectric without a specular lobe (KHR_materials_specular strength 0): no diffuse
+  // albedo, F0 = F90 = 0. (A black metal still reflects at grazing angles, F90 = 1.)
+  engine::Scene black = scene_;
   for (engine::Material& m : black.materials) {
     m.baseColorFactor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    m.metallicFactor = 1.0f;
+    m.metallicFactor = 0.0f;
+    m.specularFactor = 0.0f;
   }
   const engine::SceneGpu blackGpu = engine::uploadScene(ctx(), black);
   const gi::SceneGeometry blackGeometry = samples::sceneGeometry(blackGpu, black);
-  EXPECT_EQ(blackGeometry.maxReflectance, 0.0f);  // the sample host's bound sees black metal
+  EXPECT_EQ(blackGeometry.maxReflectance, 0.0f);  // the sample host's bound sees it
+  engine::Scene blackMetal = black;
+  for (engine::Material& m : blackMetal.materials) m.metallicFactor = 1.0f;
+  EXPECT_EQ(samples::sceneGeometry(blackGpu, blackMetal).maxReflectance, 1.0f);
   EXPECT_GT(geometry().maxReflectance, 0.0f);
   expectSame(input(), blackGeometry, "scene: no surface reflects");
 }

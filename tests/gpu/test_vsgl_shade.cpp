@@ -160,8 +160,11 @@ TEST_F(VsglShadeTest, MatchesReference) {
   ASSERT_FALSE(decoded_.at(cx, cy).background());
   const std::vector<gpu::Vsgl> vsgls = hardCaseVsgls(scene_, receiver(cx, cy));
   for (uint32_t flags :
-       {VSGL_SHADE_GLOSSY, 0u, VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY, VSGL_SHADE_VISIBILITY}) {
+       {VSGL_SHADE_GLOSSY | VSGL_SHADE_PLANAR, VSGL_SHADE_PLANAR,
+        VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY | VSGL_SHADE_PLANAR, VSGL_SHADE_VISIBILITY,
+        VSGL_SHADE_GLOSSY}) {
     const bool glossy = flags & VSGL_SHADE_GLOSSY, visible = flags & VSGL_SHADE_VISIBILITY;
+    const bool planar = flags & VSGL_SHADE_PLANAR;
     std::vector<double> atlas;
     const Shaded gpu = shade(vsgls, flags, &atlas);
     std::vector<gi::IndirectRadiance> cpu(size_t{kWidth} * kHeight);
@@ -182,7 +185,7 @@ TEST_F(VsglShadeTest, MatchesReference) {
             ++pairs;
             return v;
           };
-        r = gi::shadeReference(at, vsgls, glossy, visibility);
+        r = gi::shadeReference(at, vsgls, glossy, planar, visibility);
         largest[0] = std::max({largest[0], r.diffuse.r, r.diffuse.g, r.diffuse.b});
         largest[1] = std::max({largest[1], r.glossy.r, r.glossy.g, r.glossy.b});
       }
@@ -261,7 +264,7 @@ TEST_F(VsglShadeTest, SpecularStrengthScalesTheGlossyTerm) {
         EXPECT_LE(scaled[1].glossy[i][c], 1e-6 * full.glossy[i][c] + 1e-12 * largest);
       }
       if (x % 4 == 0 && y % 4 == 0) {  // the twin on a sample of the pixels
-        const gi::IndirectRadiance r = gi::shadeReference(receiver(x, y), vsgls, true);
+        const gi::IndirectRadiance r = gi::shadeReference(receiver(x, y), vsgls, true, false);
         for (int c = 0; c < 3; ++c)
           EXPECT_NEAR(scaled[0].glossy[i][c], r.glossy[c], 2e-3 * r.glossy[c] + 1e-5 * largest)
               << "pixel " << x << "," << y;
@@ -388,7 +391,8 @@ TEST_F(VsglShadeTest, CullingLosesAtMostItsBudget) {
   size_t surface = 0;
   for (uint32_t y = 0; y < kHeight; ++y)
     for (uint32_t x = 0; x < kWidth; ++x) surface += !decoded_.at(x, y).background();
-  for (uint32_t flags : {VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY, VSGL_SHADE_VISIBILITY}) {
+  for (uint32_t flags : {VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY | VSGL_SHADE_PLANAR,
+                         VSGL_SHADE_VISIBILITY}) {
     const Shaded full = shade(vsgls, flags);
     for (float budget : {0.01f, 0.2f}) {
       SCOPED_TRACE("flags " + std::to_string(flags) + ", budget " + std::to_string(budget));

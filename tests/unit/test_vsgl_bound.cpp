@@ -40,17 +40,28 @@ double largest(glm::dvec3 c) {
   return std::max({c.r, c.g, c.b});
 }
 
-// The light of one lobe at one receiver: the VSGL holds it and nothing else.
-gi::IndirectRadiance lobeLight(const gi::ShadeReceiver& at, const gpu::VsglLobe& lobe) {
+// The light of one lobe at one receiver: the VSGL holds it as its diffuse lobe and nothing else
+// (so that, with planar emitters, the lobe also sets the VSGL's plane).
+gpu::Vsgl onlyLobe(const gpu::VsglLobe& lobe) {
   gpu::Vsgl v{};
   v.diffuse = lobe;
-  return gi::shadeReference(at, std::span<const gpu::Vsgl>(&v, 1), true);
+  return v;
 }
 
-// Groups of eight receivers and sixteen lobes from a fixed-seed LCG: 400 groups, 51 200 pairs.
-// The bound is exact arithmetic on the same double model, so it may not be exceeded at all:
-// the only slack is 1e-9 relative for the rounding of the two computations.
-TEST(VsglBound, NoReceiverGetsMoreThanTheBound) {
+gi::IndirectRadiance lobeLight(const gi::ShadeReceiver& at, const gpu::VsglLobe& lobe,
+                               bool planar = false) {
+  const gpu::Vsgl v = onlyLobe(lobe);
+  return gi::shadeReference(at, std::span<const gpu::Vsgl>(&v, 1), true, planar);
+}
+
+// Groups of eight receivers and sixteen lobes from a fixed-seed LCG: 400 groups, 51 200 pairs,
+// with the SG emitter and with planar emitters (docs/techniques/planar-emitters.md). The bound
+// is exact arithmetic on the same double model, so it may not be exceeded at all: the only
+// slack is 1e-9 relative for the rounding of the two computations.
+class VsglBoundModels : public testing::TestWithParam<bool> {};
+
+TEST_P(VsglBoundModels, NoReceiverGetsMoreThanTheBound) {
+  const bool planar = GetParam();
   Lcg rng(20261202);
   const double extents[] = {0.0, 0.01, 0.1, 0.5};
   const double spreads[] = {0.0, 0.1, 0.5, 1.5};
@@ -84,9 +95,10 @@ TEST(VsglBound, NoReceiverGetsMoreThanTheBound) {
       const gpu::VsglLobe lobe = testing_gpu::vsglLobe(
           glm::vec3(mean), float(variance), glm::vec3(unitVector(rng)), float(sharpness),
           glm::vec3(rng.next(), rng.next(), rng.next()) * 10.0f);
-      const gi::VsglLobeBound bound = gi::vsglLobeBound(lobe, group);
+      const gi::VsglLobeBound bound =
+          gi::vsglLobeBound(lobe, group, gi::vsglEmission(onlyLobe(lobe), planar).diffuse);
       for (const gi::ShadeReceiver& r : receivers) {
-        const gi::IndirectRadiance light = lobeLight(r, lobe);
+        const gi::IndirectRadiance light = lobeLight(r, lobe, planar);
         const double diffuse = largest(light.diffuse), glossy = largest(light.glossy);
         ++pairs;
         const bool over =
@@ -111,6 +123,11 @@ TEST(VsglBound, NoReceiverGetsMoreThanTheBound) {
                 (*ratios)[ratios->size() / 2], (*ratios)[ratios->size() * 9 / 10]);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Emitters, VsglBoundModels, testing::Bool(),
+                         [](const testing::TestParamInfo<bool>& info) {
+                           return info.param ? "Planar" : "Sg";
+                         });
 
 // The bound sees what culls: the same lobe turned away from a tile, or moved 20 times farther,
 // is bounded far below the lobe facing it (a bound that ignored direction or distance would

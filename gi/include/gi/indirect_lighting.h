@@ -90,7 +90,8 @@ struct SceneGeometry {
   glm::vec3 boundsMin{0.0f};  // world-space box around all geometry (RSM depth range, ISM far
   glm::vec3 boundsMax{0.0f};  // distance, directional lights' orthographic view)
   // The largest reflectance of any surface: the largest channel of any material's diffuse
-  // albedo or specular F0, textures included, in [0, 1]. 0 means nothing can bounce light, and
+  // albedo, specular F0 or F90 (Schlick's grazing reflectance: a black metal has F90 = 1),
+  // textures included, in [0, 1]. 0 means nothing can bounce light, and
   // the effect planner then skips every pass (FramePlan). A host that does not know leaves 1.
   float maxReflectance = 1.0f;
   // The largest F0 channel or F90 of any material, textures included, in [0, 1]. 0 means no

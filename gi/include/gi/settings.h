@@ -213,6 +213,11 @@ struct Settings {
   // Shade the glossy (GGX) term; off, the glossy output is 0 and shading costs about 40 % less
   // (measured on lavapipe: 252 -> 155 ns per pixel-VSGL pair with ISMs).
   bool glossy = true;
+  // Flat clusters shade as planar emitters (docs/techniques/planar-emitters.md): no light below
+  // or along a VSGL's plane (a floor does not light itself, a wall's outer face does not light
+  // the room), power kept. Off: the SG emitter of vsgl-math.md section 3.4 for every VSGL, for
+  // comparison. Cost: a few flops per pixel-VSGL pair (measured in docs/accuracy.md).
+  bool planarEmitters = true;
   PlannerSettings planner;
   AdaptiveSettings adaptive;
   CullingSettings culling;

@@ -7,6 +7,7 @@
 
 #include "engine/commands.h"
 #include "engine/error.h"
+#include "passes/ggx_albedo_table.h"
 #include "reference/env_map_reference.h"
 #include "reference/env_sg_reference.h"
 #include "reference/sg_math.h"
@@ -48,13 +49,7 @@ EnvSgLights::EnvSgLights(engine::Context& ctx, uint32_t mapSize, uint32_t maxCou
   sampler_ = engine::Sampler(ctx, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   lights_ = engine::Buffer(ctx, VkDeviceSize{maxCount} * sizeof(gpu::EnvSgLight),
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
-  albedoTable_ = engine::Buffer(ctx, sizeof(glm::vec2) * kGgxAlbedoTableSize * kGgxAlbedoTableSize,
-                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload);
-  // Host-visible memory: written here without a submit.
-  std::vector<glm::vec2> table;
-  for (int i = 0; i < kGgxAlbedoTableSize; ++i)
-    for (int j = 0; j < kGgxAlbedoTableSize; ++j) table.emplace_back(ggxSpecularAlbedoNode(i, j));
-  albedoTable_.upload(ctx, std::span<const glm::vec2>(table));
+  albedoTable_ = createGgxAlbedoTable(ctx);
 
   using Type = std::vector<VkDescriptorType>;
   constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/commands.h"
+#include "passes/ggx_albedo_table.h"
 #include "shared/rsm_flux.h"
 #include "spirv/rsm_flux.h"
 
@@ -111,8 +112,12 @@ VplImages createVplImages(engine::Context& ctx, uint32_t width, uint32_t height)
 FluxPass::FluxPass(engine::Context& ctx, std::string passName)
     : passName_(std::move(passName)),
       program_(ctx, "rsm_flux", kRsmFluxSpv,
-               std::vector<VkDescriptorType>(6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
-               sizeof(gpu::RsmFluxPush)) {}
+               {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+               sizeof(gpu::RsmFluxPush)),
+      albedoTable_(createGgxAlbedoTable(ctx)) {}
 
 void FluxPass::record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmView& view,
                       const FluxSource& source, VplImages& out,
@@ -129,7 +134,8 @@ void FluxPass::record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmVi
   program_.dispatch(cmd,
                     {Binding::storageImage(surface.depth), Binding::storageImage(surface.diffuse),
                      Binding::storageImage(surface.specular), Binding::storageImage(out.position),
-                     Binding::storageImage(out.diffuse), Binding::storageImage(out.specular)},
+                     Binding::storageImage(out.diffuse), Binding::storageImage(out.specular),
+                     Binding::storageImage(surface.normal), Binding::storage(albedoTable_)},
                     push, engine::groupCount(out.width, RSM_GROUP_X),
                     engine::groupCount(out.height, RSM_GROUP_Y));
   engine::computeBarrier(cmd);

@@ -78,6 +78,7 @@ class FluxPass {
  private:
   std::string passName_;
   engine::ComputeProgram program_;
+  engine::Buffer albedoTable_;  // createGgxAlbedoTable: the specular flux's directional albedo
 };
 
 class ReflectiveShadowMap {

@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "engine/commands.h"
-#include "reference/sg_math.h"
+#include "passes/ggx_albedo_table.h"
 #include "shared/adaptive_shading.h"
 #include "shared/vsgl.h"
 #include "shared/vsgl_shade.h"
@@ -27,8 +27,7 @@ IndirectImages createIndirectImages(engine::Context& ctx, uint32_t width, uint32
 
 VsglShade::VsglShade(engine::Context& ctx)
     : ctx_(&ctx),
-      albedoTable_(ctx, sizeof(glm::vec2) * kGgxAlbedoTableSize * kGgxAlbedoTableSize,
-                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload),
+      albedoTable_(createGgxAlbedoTable(ctx)),
       noQueue_(ctx, sizeof(gpu::AdaptiveQueueHeader) + sizeof(uint32_t),
                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly),
       stats_(ctx, sizeof(gpu::VsglShadeStats),
@@ -38,11 +37,6 @@ VsglShade::VsglShade(engine::Context& ctx)
       statsReadback_(ctx, sizeof(gpu::VsglShadeStats), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                      engine::MemoryUsage::Readback) {
   std::memset(statsReadback_.mapped(), 0, statsReadback_.size());
-  // Host-visible memory: written here without a submit (the module never submits).
-  std::vector<glm::vec2> table;
-  for (int i = 0; i < kGgxAlbedoTableSize; ++i)
-    for (int j = 0; j < kGgxAlbedoTableSize; ++j) table.emplace_back(ggxSpecularAlbedoNode(i, j));
-  albedoTable_.upload(ctx, std::span<const glm::vec2>(table));
 }
 
 void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "reference/sg_math.h"
+
 namespace gi {
 double luminance709(const glm::dvec3& c) {
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
@@ -34,7 +36,12 @@ std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surfa
       t.lit = luminance709(t.incident) > 0.0 ? 1.0 : 0.0;
       t.offset = offset * t.lit;
       t.diffuseFlux = s.diffuse * t.incident;
-      t.specularFlux = s.f0 * t.incident;
+      // The specular lobe's directional albedo at the light's incidence (rsm_flux.h).
+      const glm::dvec3 toLight = view.perspective ? -glm::normalize(offset) : -axis;
+      const double nl = std::max(glm::dot(s.normal, toLight), 1e-4);
+      const glm::dvec2 table =
+          ggxSpecularAlbedo(nl, std::max(s.roughness * s.roughness, 1e-3));
+      t.specularFlux = (s.f90 * table.x + s.f0 * (table.y - table.x)) * t.incident;
       t.roughness = s.roughness * t.lit;
     }
   }

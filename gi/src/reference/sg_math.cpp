@@ -184,6 +184,11 @@ double sgClampedCosineIntegralOverPi(double lambda, double cosine) {
 }
 
 VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 receiver) {
+  return vsglIncomingRadiance(lobe, receiver, VsglLobeEmission{}, glm::dvec3(0.0));
+}
+
+VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 receiver,
+                                          const VsglLobeEmission& emission, glm::dvec3 normal) {
   const glm::dvec3 mean(lobe.meanVariance);
   const double variance = lobe.meanVariance.w;
   // The fp32 axis is unit only to ~1e-7, which sharpnesses up to 2^41 would amplify in the
@@ -194,19 +199,40 @@ VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 
   const glm::dvec3 toLight = mean - receiver;
   const double distance2 = glm::dot(toLight, toLight);
   const double distance = std::sqrt(distance2);
-  const double clampedVariance =
-      std::max({variance, distance2 * kVarianceFloorScale, kMinVariance});
+  // Foreshortening f at the receiver's elevation above the cluster's plane, its cosine measured
+  // against sqrt(d^2 + v): h / d far away, h / sqrt(v) inside the cluster, so that a receiver
+  // in the plane gets f = 1 - beta however close it is to the mean.
+  const double reach = std::sqrt(distance2 + variance);
+  const double foreshortening =
+      emission.flatness +
+      (reach > 0.0 ? std::max(-glm::dot(emission.plane, toLight), 0.0) / reach : 0.0);
+  const double spotVariance =
+      std::max({foreshortening * variance, distance2 * kVarianceFloorScale, kMinVariance});
+  // The planar Gaussian spot seen from the receiver, G(w; l / d, d^2 / v_f) (section 4.1). At
+  // d = 0 its sharpness is 0 and its axis irrelevant (section 12 case 12).
+  const Sg spot{distance > 0.0 ? toLight / distance : -axis, distance2 / spotVariance, 0.0};
 
-  // Emitted SG over incident directions (they point back along -xi), times the planar
-  // Gaussian spot seen from the receiver, G(w; l / d, d^2 / v) (section 4.1). At d = 0 the spot
-  // sharpness is 0 and its axis irrelevant (section 12 case 12).
-  const Sg emitted{-axis, sharpness, 0.0};
-  const Sg spot{distance > 0.0 ? toLight / distance : -axis, distance2 / clampedVariance, 0.0};
+  double emissionSharpness = sharpness;
+  double normalisation =
+      emission.normalisation < 0.0 ? sgIntegral(sharpness) : emission.normalisation;
+  double keep = 1.0;
+  if (emission.lambertian) {
+    const double beta = 1.0 - emission.flatness;
+    const double near = sharpness / std::max(sharpness + spot.sharpness, kMinVariance);
+    emissionSharpness = emission.flatness * sharpness + beta * sharpness * near;
+    normalisation = emission.flatness * sgIntegral(emissionSharpness) +
+                    beta * 2.0 * kPi * clampedCosineUpperIntegral(emissionSharpness);
+    keep = 1.0 - near * std::max(glm::dot(emission.plane, normal), 0.0);
+  }
+  // Emitted SG over incident directions (they point back along -xi), times the spot.
+  const Sg emitted{-axis, emissionSharpness, 0.0};
 
   VsglIncomingRadiance radiance;
   radiance.sg = sgProduct(emitted, spot);
-  // E = Phi / (2 pi v S(lambda)) (section 3.4): 2-D Gaussian times vMF normalisation.
-  radiance.scale = glm::dvec3(lobe.power) / (2.0 * kPi * clampedVariance * sgIntegral(sharpness));
+  // E = Phi f / (2 pi v_f N) (section 3.4 with N for S): 2-D Gaussian times the emission's
+  // normalisation, so that the spot's integral 2 pi v_f / d^2 leaves I(-w_l) / d^2.
+  radiance.scale = glm::dvec3(lobe.power) *
+                   (keep * foreshortening / (2.0 * kPi * spotVariance * normalisation));
   return radiance;
 }
 

@@ -108,6 +108,31 @@ struct VsglIncomingRadiance {
 };
 VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 receiver);
 
+// How a lobe's light leaves its cluster (docs/techniques/planar-emitters.md; built by
+// vsgl_emitter.h). The radiant intensity toward direction w is
+//   I(w) = Phi G(w; xi, lambda_e) ((1 - beta) + beta (w . n)^+) / N
+// and the positional Gaussian is foreshortened by the same factor f = (1 - beta) + beta c, with
+// c = (n . (x - mu))^+ / sqrt(d^2 + v) the receiver's elevation (w . n far away, regular at the
+// mean): the spot's variance is f v. A Lambertian (diffuse)
+// lobe's emission sharpness follows the spot's sharpness lambda_s,
+//   lambda_e = (1 - beta) lambda + beta lambda^2 / (lambda + lambda_s),
+// with N = (1 - beta) S(lambda_e) + 2 pi beta U(lambda_e); any other lobe keeps lambda_e = lambda
+// and `normalisation`. The default is the SG emitter of section 3.4: beta = 0 and S(lambda).
+struct VsglLobeEmission {
+  double normalisation = -1.0;  // N of a non-Lambertian lobe; < 0: S(lambda)
+  glm::dvec3 plane{0.0};        // beta n
+  double flatness = 1.0;        // 1 - beta
+  bool lambertian = false;
+};
+// The incoming radiance of a lobe with that emission: I(-w_l) / d^2 in the far field (w_l the
+// unit direction from the receiver to the mean), E G(w; -xi, lambda_e) G(w; l / d, d^2 / v_f)
+// with v_f = max(f v, d^2 / 2^41, 2^-126) and E = Phi f / (2 pi v_f N); 0 where f = 0.
+// A Lambertian lobe also scales the light of a receiver with unit normal `normal` by
+// keep = 1 - beta w (n . normal)^+, w = lambda / (lambda + lambda_s): near a flat cluster its
+// light comes from below its plane, which a receiver facing the cluster's way cannot see.
+VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 receiver,
+                                          const VsglLobeEmission& emission, glm::dvec3 normal);
+
 // Outgoing diffuse radiance at a receiver with unit normal n and albedo rho from one VSGL lobe
 // (section 4.3): rho E e^(l_p) D(lambda_p, xi_p . n), i.e. rho / pi times the integral of
 // L_i (w . n)^+. No visibility.

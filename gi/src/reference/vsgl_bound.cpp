@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "reference/sg_math.h"
+#include "reference/vsgl_emitter.h"
 
 namespace gi {
 
@@ -66,14 +67,25 @@ VsglReceivers vsglReceivers(std::span<const ShadeReceiver> receivers, bool gloss
   return g;
 }
 
-VsglLobeBound vsglLobeBound(const gpu::VsglLobe& lobe, const VsglReceivers& group) {
+VsglLobeBound vsglLobeBound(const gpu::VsglLobe& lobe, const VsglReceivers& group,
+                            const VsglLobeEmission& emitted) {
   const double power = std::max({lobe.power.r, lobe.power.g, lobe.power.b});
   if (!(power > 0.0)) return {};
   const glm::dvec3 mean(lobe.meanVariance);
   const glm::dvec3 rawAxis(lobe.axisSharpness);
   const double axisLength = glm::length(rawAxis);
   const glm::dvec3 axis = axisLength > 0.0 ? rawAxis / axisLength : glm::dvec3(0.0, 0.0, 1.0);
-  const double variance = lobe.meanVariance.w, sharpness = lobe.axisSharpness.w;
+  // The emission's sharpness and normalisation (the foreshortening f <= 1 only lowers the light:
+  // I carries f and the spot's variance f v never exceeds v, planar-emitters.md).
+  const double variance = lobe.meanVariance.w;
+  // A Lambertian lobe's emission sharpness lies in [(1 - beta) lambda, lambda] and its N is least
+  // at lambda: the widest emission with the least N bounds it.
+  const double sharpness = emitted.lambertian ? emitted.flatness * lobe.axisSharpness.w
+                                              : lobe.axisSharpness.w;
+  const double normalisation =
+      emitted.lambertian
+          ? vsglLambertianNormalisation(lobe.axisSharpness.w, 1.0 - emitted.flatness)
+          : (emitted.normalisation < 0.0 ? sgIntegral(sharpness) : emitted.normalisation);
 
   const glm::dvec3 toLight = mean - group.centre;
   const double centreDistance = glm::length(toLight);
@@ -81,9 +93,10 @@ VsglLobeBound vsglLobeBound(const gpu::VsglLobe& lobe, const VsglReceivers& grou
   const double nearest = std::max(centreDistance - group.radius, 0.0);
   const double nearest2 = nearest * nearest;
   const double variance0 = std::max({variance, nearest2 * kVarianceFloorScale, kMinVariance});
-  // E S(lambda_s) = P (1 - e^(-2 d^2 / v')) / (S(lambda_e) d^2) <= P / S(lambda_e) min(1 / d^2,
-  // 2 / v'); E itself <= P / (2 pi S(lambda_e) v'_0).
-  const double perIntegral = power / sgIntegral(sharpness);
+  // With N = S(lambda_e) for the SG emitter (the emission's normalisation otherwise):
+  // E S(lambda_s) = P (1 - e^(-2 d^2 / v')) / (N d^2) <= P / N min(1 / d^2,
+  // 2 / v'); E itself <= P / (2 pi N v'_0).
+  const double perIntegral = power / normalisation;
   const double cap = 2.0 / variance0;
   const double flux = perIntegral * (nearest2 > 0.0 ? std::min(1.0 / nearest2, cap) : cap);
   const double peak = perIntegral / (2.0 * kPi * variance0);

@@ -36,6 +36,8 @@ struct VsglLobeBound {
   double diffuse = 0.0;
   double glossy = 0.0;
 };
-VsglLobeBound vsglLobeBound(const gpu::VsglLobe& lobe, const VsglReceivers& group);
+// `emission`: the lobe's emission model (vsgl_emitter.h); the default is the SG emitter.
+VsglLobeBound vsglLobeBound(const gpu::VsglLobe& lobe, const VsglReceivers& group,
+                            const VsglLobeEmission& emission = {});
 
 }  // namespace gi

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "reference/sg_math.h"
+#include "reference/vsgl_emitter.h"
 #include "shared/vsgl.h"
 
 namespace gi {
@@ -29,7 +30,8 @@ struct IndirectRadiance {
 // Visibility of VSGL `index` from the receiver, in [0, 1]; empty = 1 for every VSGL.
 using VsglVisibility = std::function<double(uint32_t index)>;
 
+// `planar`: the planar-emitter model of vsgl_emitter.h (Settings::planarEmitters).
 IndirectRadiance shadeReference(const ShadeReceiver& receiver, std::span<const gpu::Vsgl> vsgls,
-                                bool glossy, const VsglVisibility& visibility = {});
+                                bool glossy, bool planar, const VsglVisibility& visibility = {});
 
 }  // namespace gi
