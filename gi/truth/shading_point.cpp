@@ -24,4 +24,14 @@ ShadingPoint shadingPoint(const engine::Scene& scene, const RayHit& hit, glm::dv
   return s;
 }
 
+std::optional<PrimaryHit> primaryHit(const engine::Scene& scene, const EmbreeScene& rays,
+                                     const engine::View& view, size_t pixel) {
+  const auto px = static_cast<uint32_t>(pixel % view.width),
+             py = static_cast<uint32_t>(pixel / view.width);
+  const engine::CameraRay ray = engine::cameraRayReference(view, glm::dvec2(px + 0.5, py + 0.5));
+  const RayHit hit = rays.intersect(ray.origin, ray.dir);
+  if (!hit.hit) return std::nullopt;
+  return PrimaryHit{ray, shadingPoint(scene, hit, ray.origin, ray.dir)};
+}
+
 }  // namespace truth

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "embree_scene.h"
 #include "engine/gbuffer_reference.h"
 #include "engine/scene.h"
+#include "engine/view.h"
 
 namespace truth {
 
@@ -22,5 +24,14 @@ struct ShadingPoint {
 
 ShadingPoint shadingPoint(const engine::Scene& scene, const RayHit& hit, glm::dvec3 origin,
                           glm::dvec3 rayDir);
+
+// What the camera sees through the centre of pixel `pixel` (row-major index) of `view`: the
+// primary ray the references shade along, and its shading point; nothing on background.
+struct PrimaryHit {
+  engine::CameraRay ray;
+  ShadingPoint point;
+};
+std::optional<PrimaryHit> primaryHit(const engine::Scene& scene, const EmbreeScene& rays,
+                                     const engine::View& view, size_t pixel);
 
 }  // namespace truth

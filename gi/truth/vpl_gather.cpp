@@ -50,6 +50,7 @@ std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, ui
     v.f0 = s.f0;
     v.f90 = s.f90;
     v.roughness = s.roughness;
+    v.texel = static_cast<uint32_t>(i);
     // The texel's patch: its solid angle from the light (texelArea cos^3 on the unit-distance
     // plane, as the flux) times t^2 / cos at the surface; a parallel beam's texelArea / cos.
     double cosine;
@@ -70,7 +71,8 @@ std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, ui
 }
 
 VplGatherImage vplGather(const engine::Scene& scene, const EmbreeScene& rays,
-                         const engine::View& view, const std::vector<Vpl>& vpls, unsigned threads) {
+                         const engine::View& view, const std::vector<Vpl>& vpls, unsigned threads,
+                         bool visibility) {
   const auto start = std::chrono::steady_clock::now();
   VplGatherImage image;
   image.width = view.width;
@@ -80,12 +82,10 @@ VplGatherImage vplGather(const engine::Scene& scene, const EmbreeScene& rays,
   image.glossy.assign(pixels, glm::dvec3(0.0));
   image.vplCount = vpls.size();
   forEachPixel(pixels, threadCount(threads), [&](size_t i) {
-    const auto px = static_cast<uint32_t>(i % view.width),
-               py = static_cast<uint32_t>(i / view.width);
-    const engine::CameraRay ray = engine::cameraRayReference(view, glm::dvec2(px + 0.5, py + 0.5));
-    const RayHit hit = rays.intersect(ray.origin, ray.dir);
-    if (!hit.hit) return;
-    const ShadingPoint x = shadingPoint(scene, hit, ray.origin, ray.dir);
+    const std::optional<PrimaryHit> primary = primaryHit(scene, rays, view, i);
+    if (!primary) return;
+    const engine::CameraRay& ray = primary->ray;
+    const ShadingPoint& x = primary->point;
     const engine::GBufferSample& s = x.surface;
     const glm::dvec3 v = -ray.dir;
     const glm::dvec3 xo = offsetOrigin(x.position, x.geometricNormal);
@@ -100,7 +100,8 @@ VplGatherImage vplGather(const engine::Scene& scene, const EmbreeScene& rays,
       if (cosX <= 0.0 || cosY <= 0.0 || glm::dot(x.geometricNormal, w) <= 0.0) continue;
       // Both ends off their surfaces (the VPL lies on one): x's offset point to the VPL's,
       // lifted along its normal towards x's side.
-      if (!rays.visible(xo, offsetOrigin(vpl.position, vpl.geometricNormal))) continue;
+      if (visibility && !rays.visible(xo, offsetOrigin(vpl.position, vpl.geometricNormal)))
+        continue;
       if (glm::dot(vpl.normal, vpl.toLight) <= 0.0) continue;  // lit from behind its normal
       // Both GGX lobes, the VPL's and the receiver's, widened by the patch's angular size seen
       // from x (path regularisation, Kaplanyan and Dachsbacher 2013): a point sample of a

@@ -34,6 +34,7 @@ struct Vpl {
   glm::dvec3 f0{0.0};
   double f90 = 1.0;
   double roughness = 0.0;
+  uint32_t texel = 0;  // y * rsmSize + x of the RSM texel it stands for
 };
 
 // The lit texels of light `light`'s rsmSize^2 RSM (gi::makeRsmView, rasterised and resolved by
@@ -52,8 +53,9 @@ struct VplGatherImage {
 };
 
 // Primary rays through pixel centres, as the path tracer's. `threads` 0: every core.
+// `visibility` false: no visibility rays (the error budget's unshadowed stages).
 VplGatherImage vplGather(const engine::Scene& scene, const EmbreeScene& rays,
                          const engine::View& view, const std::vector<Vpl>& vpls,
-                         unsigned threads = 0);
+                         unsigned threads = 0, bool visibility = true);
 
 }  // namespace truth

@@ -52,8 +52,8 @@ const char* usage() {
          "  --scenes LIST   comma-separated scenes (built-in names or .gltf/.glb files) instead\n"
          "                  of the preset's\n"
          "  --methods LIST  comma-separated methods instead of the preset's: tok15, modified,\n"
-         "                  modified-full, modified-culled, modified-full-culled, kmeans-2d,\n"
-         "                  kmeans-3d\n"
+         "                  modified-full, modified-culled, modified-full-culled,\n"
+         "                  modified-sg-emitter, modified-full-sg-emitter, kmeans-2d, kmeans-3d\n"
          "  --counts LIST   comma-separated VSGL counts, 1..65535, instead of the preset's\n"
          "  --width N --height N  image size, 1..8192, instead of the preset's (the path-traced\n"
          "                  reference's cost grows with the pixel count)\n"
@@ -78,7 +78,8 @@ Options parseOptions(int argc, char** argv) {
             bench::methods().end())
           throw engine::Error("--methods: '" + m +
                               "' is not one of tok15, modified, modified-full, modified-culled, "
-                              "modified-full-culled, kmeans-2d, kmeans-3d");
+                              "modified-full-culled, modified-sg-emitter, "
+                              "modified-full-sg-emitter, kmeans-2d, kmeans-3d");
     } else if (arg == "--counts")
       o.counts = samples::parseUintList(arg, args.value(), 1, 65535);
     else if (arg == "--width")
@@ -112,7 +113,12 @@ gi::Settings settingsFor(const bench::Preset& p, const std::string& method, uint
   s.brsm.gridSize = std::min(s.brsm.gridSize, p.rsmSize);
   if (method == "tok15") s.rule = gi::KernelRule::Tok15;
   // The module's method with every pixel shaded: what adaptive shading saves, and costs.
-  if (method == "modified-full" || method == "modified-full-culled") s.adaptive.enabled = false;
+  if (method == "modified-full" || method == "modified-full-culled" ||
+      method == "modified-full-sg-emitter")
+    s.adaptive.enabled = false;
+  // Planar emitters off: what they cost per pixel-VSGL pair, and what they buy.
+  if (method == "modified-sg-emitter" || method == "modified-full-sg-emitter")
+    s.planarEmitters = false;
   // VSGL culling on: what it saves, and the light it loses.
   if (method == "modified-culled" || method == "modified-full-culled") s.culling.enabled = true;
   if (method == "kmeans-2d") s.method = gi::VsglMethod::KmeansImage;
@@ -161,15 +167,7 @@ SceneRun prepareScene(engine::Context& ctx, const bench::Preset& p, const std::s
   r.view = samples::sceneView(r.scene, p.width, p.height);
   r.light = samples::bouncingLight(r.scene);
   r.gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, r.scene));
-  r.gbuffer = std::make_unique<engine::GBuffer>(engine::createGBuffer(ctx, p.width, p.height));
-  engine::Rasterizer rasterizer(ctx);
-  engine::GBufferResolve resolve(ctx);
-  engine::Buffer visibility(ctx, engine::Rasterizer::visibilityBytes(p.width, p.height),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
-  ctx.submitAndWait([&](VkCommandBuffer cmd) {
-    rasterizer.record(cmd, *r.gpuScene, r.view.viewProj, {&visibility, 0, p.width, p.height});
-    resolve.record(cmd, *r.gpuScene, visibility, r.view, *r.gbuffer);
-  });
+  r.gbuffer = std::make_unique<engine::GBuffer>(samples::renderGBuffer(ctx, *r.gpuScene, r.view));
   truth::PathTraceSettings trace;
   trace.relativeError = p.referenceNoise;
   trace.progress = true;

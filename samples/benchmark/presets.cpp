@@ -5,17 +5,26 @@
 namespace bench {
 
 const std::vector<std::string>& methods() {
-  static const std::vector<std::string> names = {
-      "tok15",     "modified", "modified-full", "modified-culled", "modified-full-culled",
-      "kmeans-2d", "kmeans-3d"};
+  static const std::vector<std::string> names = {"tok15",
+                                                 "modified",
+                                                 "modified-full",
+                                                 "modified-culled",
+                                                 "modified-full-culled",
+                                                 "modified-sg-emitter",
+                                                 "modified-full-sg-emitter",
+                                                 "kmeans-2d",
+                                                 "kmeans-3d"};
   return names;
 }
 
 Preset preset(const std::string& name) {
   // Culling over full-rate shading is left to --methods: the presets time each method at every
-  // N and K, and one culling variant shows its trade.
-  const std::vector<std::string> allMethods = {"tok15",           "modified",  "modified-full",
-                                               "modified-culled", "kmeans-2d", "kmeans-3d"};
+  // N and K, and one culling variant shows its trade. The SG emitter (planar emitters off) runs
+  // at full rate, where the two shade the same pixel-VSGL pairs: what the planar emitters cost
+  // and buy.
+  const std::vector<std::string> allMethods = {
+      "tok15",     "modified",  "modified-full", "modified-culled", "modified-full-sg-emitter",
+      "kmeans-2d", "kmeans-3d"};
   const std::vector<std::string> allScenes = {"cornell", "checker", "atrium"};
   if (name == "ci")  // one small scene: checks that every method runs and scores, not speed
     return {.name = "ci",

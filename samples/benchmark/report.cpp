@@ -133,6 +133,13 @@ json targets(const json& machine, const json& rows) {
       if (culled->contains("error_against_unculled"))
         t[key + "_relative_mse_against_unculled"] = (*culled)["error_against_unculled"];
     }
+    // Planar emitters against the SG emitter, both at full rate (the same pixel-VSGL pairs).
+    if (const json* sg = find(scene, "modified-full-sg-emitter", n);
+        full && sg && passMedian(*sg, "vsgl shading") > 0.0) {
+      t["planar_shading_cost"] = passMedian(*full, "vsgl shading") / passMedian(*sg, "vsgl shading");
+      t["planar_relative_mse"] = (*full)["error"]["relative_mse"];
+      t["sg_emitter_relative_mse"] = (*sg)["error"]["relative_mse"];
+    }
     if (const json* tok15 = find(scene, "tok15", n); tok15 && generationMs(*tok15) > 0.0)
       t["modified_over_tok15_generation"] = modified / generationMs(*tok15);
     const json* best = nullptr;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <utility>
 
+#include "engine/rasterizer.h"
 #include "engine/tonemap.h"
 
 namespace samples {
@@ -112,6 +113,20 @@ std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
   check(status);
   check(lighting->setScene(sceneGeometry(gpuScene, scene)));
   return lighting;
+}
+
+engine::GBuffer renderGBuffer(engine::Context& ctx, const engine::SceneGpu& gpuScene,
+                              const engine::View& view) {
+  engine::GBuffer gbuffer = engine::createGBuffer(ctx, view.width, view.height);
+  engine::Rasterizer rasterizer(ctx);
+  engine::GBufferResolve resolve(ctx);
+  engine::Buffer visibility(ctx, engine::Rasterizer::visibilityBytes(view.width, view.height),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, view.width, view.height});
+    resolve.record(cmd, gpuScene, visibility, view, gbuffer);
+  });
+  return gbuffer;
 }
 
 gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& view,

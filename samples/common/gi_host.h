@@ -52,6 +52,10 @@ std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
                                                      const engine::SceneGpu& gpuScene,
                                                      const engine::Scene& scene);
 
+// The host's G-buffer of `view` (the compute rasterizer and resolve), in GENERAL layout.
+engine::GBuffer renderGBuffer(engine::Context& ctx, const engine::SceneGpu& gpuScene,
+                              const engine::View& view);
+
 // The G-buffer images (GENERAL layout), camera and light of one frame.
 gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& view,
                           const engine::Light& light);
