@@ -42,11 +42,10 @@ void forEachKernelTexel(glm::dvec2 x, double level, uint32_t size, Visit visit) 
     const glm::dvec2 base = glm::floor(t), fr = t - base;
     const glm::ivec2 i0 = glm::clamp(glm::ivec2(base), glm::ivec2(0), glm::ivec2(n - 1));
     const glm::ivec2 i1 = glm::clamp(glm::ivec2(base) + 1, glm::ivec2(0), glm::ivec2(n - 1));
-    const std::tuple<glm::ivec2, double> corners[] = {
-        {i0, (1.0 - fr.x) * (1.0 - fr.y)},
-        {{i1.x, i0.y}, fr.x * (1.0 - fr.y)},
-        {{i0.x, i1.y}, (1.0 - fr.x) * fr.y},
-        {i1, fr.x * fr.y}};
+    const std::tuple<glm::ivec2, double> corners[] = {{i0, (1.0 - fr.x) * (1.0 - fr.y)},
+                                                      {{i1.x, i0.y}, fr.x * (1.0 - fr.y)},
+                                                      {{i0.x, i1.y}, (1.0 - fr.x) * fr.y},
+                                                      {i1, fr.x * fr.y}};
     for (const auto& [c, w] : corners) {
       if (w <= 0.0) continue;
       const double perTexel = levelWeight * w / double(side * side);
@@ -91,8 +90,8 @@ glm::dvec3 fromBasis(glm::dvec3 axis, double cosine, double phi) {
 
 // A direction with density proportional to G(w; axis, lambda) (the vMF), from u in [0, 1)^2.
 glm::dvec3 sampleSg(glm::dvec3 axis, double lambda, glm::dvec2 u) {
-  const double cosine = lambda < 1e-6 ? 1.0 - 2.0 * u.x
-                                      : 1.0 + std::log1p(u.x * std::expm1(-2.0 * lambda)) / lambda;
+  const double cosine =
+      lambda < 1e-6 ? 1.0 - 2.0 * u.x : 1.0 + std::log1p(u.x * std::expm1(-2.0 * lambda)) / lambda;
   return fromBasis(axis, std::clamp(cosine, -1.0, 1.0), 2.0 * kPi * u.y);
 }
 
@@ -134,14 +133,14 @@ Radiance integrateLobe(const gi::VsglIncomingRadiance& lobe, const gi::ShadeRece
   const glm::dvec2 rotation = rotationFor(key);
   for (uint32_t j = 0; j < samples; ++j) {
     const bool sg = j < fromSg;
-    const glm::dvec2 u = sg ? latticePoint(j, fromSg, rotation)
-                            : latticePoint(j - fromSg, fromGgx, rotation);
+    const glm::dvec2 u =
+        sg ? latticePoint(j, fromSg, rotation) : latticePoint(j - fromSg, fromGgx, rotation);
     const glm::dvec3 w = sg ? sampleSg(axis, lambda, u) : sampleGgx(r.normal, r.view, a2, u);
     const double cosine = glm::dot(r.normal, w);
     if (cosine <= 0.0) continue;
     const double g = gi::sgEvaluate(w, axis, lambda);
-    const double density = fromSg * g / integral +
-                           (specular ? fromGgx * ggxDensity(r.normal, r.view, a2, w) : 0.0);
+    const double density =
+        fromSg * g / integral + (specular ? fromGgx * ggxDensity(r.normal, r.view, a2, w) : 0.0);
     if (!(density > 0.0) || g == 0.0) continue;
     const glm::dvec3 arriving = lobe.scale * (amplitude * g * cosine / density);
     out.diffuse += r.albedo / kPi * arriving;
@@ -217,8 +216,7 @@ VsglStageImages vsglStages(const engine::Scene& scene, const EmbreeScene& rays,
     for (size_t k = 0; k < vsgls.size(); ++k)
       visible[k] = frames[k].lit && rays.visible(frames[k].centre, xo) ? 1.0 : 0.0;
     const gi::IndirectRadiance analytic = gi::shadeReference(
-        r, vsgls, settings.glossy, settings.planarEmitters,
-        [&](uint32_t k) { return visible[k]; });
+        r, vsgls, settings.glossy, settings.planarEmitters, [&](uint32_t k) { return visible[k]; });
     out.analytic[i] = analytic.diffuse + analytic.glossy;
     Radiance numeric, unshadowed;
     for (size_t k = 0; k < vsgls.size(); ++k) {

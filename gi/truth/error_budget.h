@@ -42,7 +42,7 @@ std::vector<Vpl> weightedVpls(const std::vector<Vpl>& vpls, const std::vector<do
 struct VsglStageImages {
   std::vector<glm::dvec3> numeric;     // SG model, numerically integrated
   std::vector<glm::dvec3> unshadowed;  // the same without visibility
-  std::vector<glm::dvec3> analytic;  // the module's analytic SG lighting (double twin)
+  std::vector<glm::dvec3> analytic;    // the module's analytic SG lighting (double twin)
   double seconds = 0.0;
 };
 

@@ -23,7 +23,7 @@ Preset preset(const std::string& name) {
   // at full rate, where the two shade the same pixel-VSGL pairs: what the planar emitters cost
   // and buy.
   const std::vector<std::string> allMethods = {
-      "tok15",     "modified",  "modified-full", "modified-culled", "modified-full-sg-emitter",
+      "tok15",     "modified", "modified-full", "modified-culled", "modified-full-sg-emitter",
       "kmeans-2d", "kmeans-3d"};
   const std::vector<std::string> allScenes = {"cornell", "checker", "atrium"};
   if (name == "ci")  // one small scene: checks that every method runs and scores, not speed

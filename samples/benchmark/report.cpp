@@ -136,7 +136,8 @@ json targets(const json& machine, const json& rows) {
     // Planar emitters against the SG emitter, both at full rate (the same pixel-VSGL pairs).
     if (const json* sg = find(scene, "modified-full-sg-emitter", n);
         full && sg && passMedian(*sg, "vsgl shading") > 0.0) {
-      t["planar_shading_cost"] = passMedian(*full, "vsgl shading") / passMedian(*sg, "vsgl shading");
+      t["planar_shading_cost"] =
+          passMedian(*full, "vsgl shading") / passMedian(*sg, "vsgl shading");
       t["planar_relative_mse"] = (*full)["error"]["relative_mse"];
       t["sg_emitter_relative_mse"] = (*sg)["error"]["relative_mse"];
     }

@@ -183,8 +183,7 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--culling")
       o.gi.culling.enabled = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--planar-emitters")
-      o.gi.planarEmitters =
-          parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
+      o.gi.planarEmitters = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--culling-budget")
       o.gi.culling.budget = parseFloat(arg, args.value(), 0.0f, 0.5f);
     else if (arg == "--adaptive-tolerance")

@@ -62,7 +62,8 @@ class AccuracyGate : public testing_gpu::GpuTest,
     const truth::PathTraceImage traced = truth::cachedPathTrace(
         cache, scene_, view_, uint32_t(light - scene_.lights.data()), settings);
     reference_.resize(traced.diffuse.size());
-    for (size_t i = 0; i < reference_.size(); ++i) reference_[i] = traced.diffuse[i] + traced.glossy[i];
+    for (size_t i = 0; i < reference_.size(); ++i)
+      reference_[i] = traced.diffuse[i] + traced.glossy[i];
   }
 
   Score score(const gi::Settings& settings) {
@@ -70,7 +71,8 @@ class AccuracyGate : public testing_gpu::GpuTest,
         samples::createIndirect(ctx(), settings, kWidth, kHeight, *gpuScene_, scene_);
     gi::FrameOutput out;
     const gi::FrameInput in = samples::frameInput(*gbuffer_, view_, *light_);
-    ctx().submitAndWait([&](VkCommandBuffer cmd) { samples::check(lighting->record(cmd, in, &out)); });
+    ctx().submitAndWait(
+        [&](VkCommandBuffer cmd) { samples::check(lighting->record(cmd, in, &out)); });
     for (engine::Image* image :
          {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
       image->setLayout(out.gbufferLayout);
@@ -99,10 +101,11 @@ TEST_P(AccuracyGate, IndirectLightAgainstPathTracer) {
   const Score many = score(settings);
   settings.planarEmitters = false;
   const Score leaky = score(settings);
-  std::printf("%s: relMSE %.5f (N = 64), %.5f (N = 512), %.5f (N = 512, planar emitters off); "
-              "mean ratio %.4f, %.4f, %.4f\n",
-              GetParam().c_str(), few.relativeMse, many.relativeMse, leaky.relativeMse,
-              few.meanRatio, many.meanRatio, leaky.meanRatio);
+  std::printf(
+      "%s: relMSE %.5f (N = 64), %.5f (N = 512), %.5f (N = 512, planar emitters off); "
+      "mean ratio %.4f, %.4f, %.4f\n",
+      GetParam().c_str(), few.relativeMse, many.relativeMse, leaky.relativeMse, few.meanRatio,
+      many.meanRatio, leaky.meanRatio);
   const Bounds* b = nullptr;
   for (const Bounds& candidate : kBounds)
     if (GetParam() == candidate.scene) b = &candidate;

@@ -159,10 +159,9 @@ TEST_F(VsglShadeTest, MatchesReference) {
   const uint32_t cx = kWidth / 2, cy = kHeight / 2;
   ASSERT_FALSE(decoded_.at(cx, cy).background());
   const std::vector<gpu::Vsgl> vsgls = hardCaseVsgls(scene_, receiver(cx, cy));
-  for (uint32_t flags :
-       {VSGL_SHADE_GLOSSY | VSGL_SHADE_PLANAR, VSGL_SHADE_PLANAR,
-        VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY | VSGL_SHADE_PLANAR, VSGL_SHADE_VISIBILITY,
-        VSGL_SHADE_GLOSSY}) {
+  for (uint32_t flags : {VSGL_SHADE_GLOSSY | VSGL_SHADE_PLANAR, VSGL_SHADE_PLANAR,
+                         VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY | VSGL_SHADE_PLANAR,
+                         VSGL_SHADE_VISIBILITY, VSGL_SHADE_GLOSSY}) {
     const bool glossy = flags & VSGL_SHADE_GLOSSY, visible = flags & VSGL_SHADE_VISIBILITY;
     const bool planar = flags & VSGL_SHADE_PLANAR;
     std::vector<double> atlas;
@@ -391,8 +390,8 @@ TEST_F(VsglShadeTest, CullingLosesAtMostItsBudget) {
   size_t surface = 0;
   for (uint32_t y = 0; y < kHeight; ++y)
     for (uint32_t x = 0; x < kWidth; ++x) surface += !decoded_.at(x, y).background();
-  for (uint32_t flags : {VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY | VSGL_SHADE_PLANAR,
-                         VSGL_SHADE_VISIBILITY}) {
+  for (uint32_t flags :
+       {VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY | VSGL_SHADE_PLANAR, VSGL_SHADE_VISIBILITY}) {
     const Shaded full = shade(vsgls, flags);
     for (float budget : {0.01f, 0.2f}) {
       SCOPED_TRACE("flags " + std::to_string(flags) + ", budget " + std::to_string(budget));

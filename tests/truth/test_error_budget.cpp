@@ -110,7 +110,8 @@ TEST(ErrorBudget, NumericSgStageMatchesTheAnalyticTwin) {
   const truth::VsglStageImages stages = truth::vsglStages(scene, rays, view, vsgls, settings);
   double numeric = 0.0, analytic = 0.0, unshadowed = 0.0;
   for (size_t i = 0; i < stages.numeric.size(); ++i) {
-    for (int c = 0; c < 3; ++c) EXPECT_LE(stages.numeric[i][c], stages.unshadowed[i][c] * (1 + 1e-12));
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LE(stages.numeric[i][c], stages.unshadowed[i][c] * (1 + 1e-12));
     numeric += stages.numeric[i].r + stages.numeric[i].g + stages.numeric[i].b;
     analytic += stages.analytic[i].r + stages.analytic[i].g + stages.analytic[i].b;
     unshadowed += stages.unshadowed[i].r + stages.unshadowed[i].g + stages.unshadowed[i].b;

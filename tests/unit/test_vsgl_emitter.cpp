@@ -57,7 +57,8 @@ struct Light {
 };
 
 Light light(const gpu::Vsgl& v, const gi::ShadeReceiver& r, bool planar) {
-  const gi::IndirectRadiance out = gi::shadeReference(r, std::span<const gpu::Vsgl>(&v, 1), true, planar);
+  const gi::IndirectRadiance out =
+      gi::shadeReference(r, std::span<const gpu::Vsgl>(&v, 1), true, planar);
   return {kPi * out.diffuse.r, out.glossy.r};
 }
 
@@ -111,7 +112,8 @@ TEST(VsglEmitter, NearlyCoplanarReceiverGetsAlmostNothing) {
       SCOPED_TRACE("distance " + std::to_string(d) + ", height " + std::to_string(h));
       const glm::dvec3 p(d, h, 0.0);
       const double coplanar = light(v, receiverAt(p, kUp), true).irradiance;
-      const double facing = light(v, receiverAt(p + glm::dvec3(0.0, 0.05, 0.0), -kUp), true).irradiance;
+      const double facing =
+          light(v, receiverAt(p + glm::dvec3(0.0, 0.05, 0.0), -kUp), true).irradiance;
       ASSERT_GT(facing, 0.0);
       EXPECT_LE(coplanar, 1e-3 * facing);
     }
@@ -124,8 +126,8 @@ TEST(VsglEmitter, BackFaceLightsNothingBehindItsPlane) {
   size_t leaking = 0;
   for (double depth : {0.001, 0.05, 0.5})
     for (double side : {0.0, 0.1, 1.0})
-      for (glm::dvec3 n : {glm::dvec3(0, 1, 0), glm::dvec3(0, -1, 0), glm::dvec3(1, 0, 0),
-                           glm::dvec3(-1, 1, 0)}) {
+      for (glm::dvec3 n :
+           {glm::dvec3(0, 1, 0), glm::dvec3(0, -1, 0), glm::dvec3(1, 0, 0), glm::dvec3(-1, 1, 0)}) {
         const gi::ShadeReceiver r = receiverAt({side, -depth, 0.0}, n);
         const Light planar = light(v, r, true);
         EXPECT_EQ(planar.irradiance, 0.0) << "depth " << depth << " side " << side;

@@ -39,8 +39,7 @@ std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surfa
       // The specular lobe's directional albedo at the light's incidence (rsm_flux.h).
       const glm::dvec3 toLight = view.perspective ? -glm::normalize(offset) : -axis;
       const double nl = std::max(glm::dot(s.normal, toLight), 1e-4);
-      const glm::dvec2 table =
-          ggxSpecularAlbedo(nl, std::max(s.roughness * s.roughness, 1e-3));
+      const glm::dvec2 table = ggxSpecularAlbedo(nl, std::max(s.roughness * s.roughness, 1e-3));
       t.specularFlux = (s.f90 * table.x + s.f0 * (table.y - table.x)) * t.incident;
       t.roughness = s.roughness * t.lit;
     }

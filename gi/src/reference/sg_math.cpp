@@ -231,8 +231,8 @@ VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 
   radiance.sg = sgProduct(emitted, spot);
   // E = Phi f / (2 pi v_f N) (section 3.4 with N for S): 2-D Gaussian times the emission's
   // normalisation, so that the spot's integral 2 pi v_f / d^2 leaves I(-w_l) / d^2.
-  radiance.scale = glm::dvec3(lobe.power) *
-                   (keep * foreshortening / (2.0 * kPi * spotVariance * normalisation));
+  radiance.scale =
+      glm::dvec3(lobe.power) * (keep * foreshortening / (2.0 * kPi * spotVariance * normalisation));
   return radiance;
 }
 

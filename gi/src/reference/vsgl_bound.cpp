@@ -80,8 +80,8 @@ VsglLobeBound vsglLobeBound(const gpu::VsglLobe& lobe, const VsglReceivers& grou
   const double variance = lobe.meanVariance.w;
   // A Lambertian lobe's emission sharpness lies in [(1 - beta) lambda, lambda] and its N is least
   // at lambda: the widest emission with the least N bounds it.
-  const double sharpness = emitted.lambertian ? emitted.flatness * lobe.axisSharpness.w
-                                              : lobe.axisSharpness.w;
+  const double sharpness =
+      emitted.lambertian ? emitted.flatness * lobe.axisSharpness.w : lobe.axisSharpness.w;
   const double normalisation =
       emitted.lambertian
           ? vsglLambertianNormalisation(lobe.axisSharpness.w, 1.0 - emitted.flatness)

@@ -11,9 +11,9 @@ constexpr double kPi = std::numbers::pi;
 }  // namespace
 
 double vsglPlanarity(double diffuseSharpness) {
-  const double t = std::clamp((diffuseSharpness - VSGL_CORNER_SHARPNESS) /
-                                  (VSGL_FLAT_SHARPNESS - VSGL_CORNER_SHARPNESS),
-                              0.0, 1.0);
+  const double t = std::clamp(
+      (diffuseSharpness - VSGL_CORNER_SHARPNESS) / (VSGL_FLAT_SHARPNESS - VSGL_CORNER_SHARPNESS),
+      0.0, 1.0);
   return t * t * (3.0 - 2.0 * t);
 }
 

@@ -17,9 +17,8 @@ IndirectRadiance shadeReference(const ShadeReceiver& receiver, std::span<const g
     const double v = visibility ? visibility(k) : 1.0;
     if (v == 0.0) continue;
     const VsglEmission emission = vsglEmission(vsgls[k], planar);
-    for (const auto& [lobe, lobeEmission] :
-         {std::pair{&vsgls[k].diffuse, &emission.diffuse},
-          std::pair{&vsgls[k].specular, &emission.specular}}) {
+    for (const auto& [lobe, lobeEmission] : {std::pair{&vsgls[k].diffuse, &emission.diffuse},
+                                             std::pair{&vsgls[k].specular, &emission.specular}}) {
       if (std::max({lobe->power.r, lobe->power.g, lobe->power.b}) <= 0.0f) continue;
       const VsglIncomingRadiance radiance =
           vsglIncomingRadiance(*lobe, receiver.position, *lobeEmission, receiver.normal);
