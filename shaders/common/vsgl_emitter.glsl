@@ -74,9 +74,8 @@ Sg vsglLambertianRadiance(vec3 mean, float variance, vec3 axis, float sharpness,
   float emission = vsglLambertianSharpness(sharpness, spot.sharpness, plane);
   Sg radiance = sgProduct(Sg(-axis, emission, 0.0), spot);
   float keep = vsglCoplanarKeep(sharpness, spot.sharpness, plane, normal);
-  radiance.logAmplitude += keep > 0.0
-      ? logPower - log(vsglLambertianNormalisation(emission, plane)) + log(keep)
-      : -1.0 / 0.0;
+  radiance.logAmplitude +=
+      keep > 0.0 ? logPower + log(keep / vsglLambertianNormalisation(emission, plane)) : -1.0 / 0.0;
   return radiance;
 }
 
