@@ -35,6 +35,7 @@ struct Options {
   uint32_t rsm = 128;
   std::string method = "modified";
   bool planar = true;
+  uint32_t ismPoints = gi::IsmSettings{}.pointsPerVsgl;
   float noise = 0.03f;
   uint32_t samples = 32;
   std::string outDir = "budget";
@@ -50,6 +51,8 @@ const char* usage() {
          "                       stages cost pixels x texels visibility rays\n"
          "  --method NAME        modified (default), tok15, kmeans-2d or kmeans-3d\n"
          "  --planar-emitters on|off  the module's planar emitters (default on)\n"
+         "  --ism-points M       ISM points per VSGL, a power of two in 64..65536 (default\n"
+         "                       4096)\n"
          "  --noise R            the path tracer's relative standard error, 0.005..0.2\n"
          "                       (default 0.03, as the benchmark's references)\n"
          "  --samples N          directions per lobe and pixel of the numeric SG stage, 4..1024\n"
@@ -77,12 +80,15 @@ Options parseOptions(int argc, char** argv) {
       if ((o.rsm & (o.rsm - 1)) != 0)
         throw engine::Error("--rsm: " + std::to_string(o.rsm) + " is not a power of two");
     } else if (arg == "--method")
-      o.method = std::string(samples::parseChoice<std::string_view>(
-          arg, args.value(),
-          {{"modified", "modified"}, {"tok15", "tok15"}, {"kmeans-2d", "kmeans-2d"},
-           {"kmeans-3d", "kmeans-3d"}}));
+      o.method = std::string(samples::parseChoice<std::string_view>(arg, args.value(),
+                                                                    {{"modified", "modified"},
+                                                                     {"tok15", "tok15"},
+                                                                     {"kmeans-2d", "kmeans-2d"},
+                                                                     {"kmeans-3d", "kmeans-3d"}}));
     else if (arg == "--planar-emitters")
       o.planar = samples::parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
+    else if (arg == "--ism-points")
+      o.ismPoints = samples::parseUint(arg, args.value(), 64, 65536);
     else if (arg == "--noise")
       o.noise = samples::parseFloat(arg, args.value(), 0.005f, 0.2f);
     else if (arg == "--samples")
@@ -100,6 +106,7 @@ gi::Settings settingsFor(const Options& o, uint32_t count) {
   s.rsmSize = o.rsm;
   s.vsglCount = count;
   s.planarEmitters = o.planar;
+  s.ism.pointsPerVsgl = o.ismPoints;
   if (o.method == "tok15") s.rule = gi::KernelRule::Tok15;
   if (o.method == "kmeans-2d") s.method = gi::VsglMethod::KmeansImage;
   if (o.method == "kmeans-3d") s.method = gi::VsglMethod::KmeansWorld;
@@ -201,7 +208,8 @@ int run(const Options& o) {
     const truth::PathTraceImage traced =
         truth::cachedPathTrace(cache, scene, view, lightIndex, trace);
     std::vector<glm::dvec3> reference(traced.diffuse.size());
-    for (size_t i = 0; i < reference.size(); ++i) reference[i] = traced.diffuse[i] + traced.glossy[i];
+    for (size_t i = 0; i < reference.size(); ++i)
+      reference[i] = traced.diffuse[i] + traced.glossy[i];
 
     const truth::EmbreeScene rays(scene);
     const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, rays, lightIndex, o.rsm);
@@ -211,8 +219,8 @@ int run(const Options& o) {
       rsmStage[i] = gathered.diffuse[i] + gathered.glossy[i];
     const std::vector<truth::BudgetRegion> regions = truth::budgetRegions(scene, rays, view, vpls);
     writeRegions((out / (name + "_regions.png")).string(), view, regions);
-    std::printf("%s: reference %.1f s, %zu VPLs gathered in %.1f s\n", name.c_str(),
-                traced.seconds, vpls.size(), gathered.seconds);
+    std::printf("%s: reference %.1f s, %zu VPLs gathered in %.1f s\n", name.c_str(), traced.seconds,
+                vpls.size(), gathered.seconds);
 
     const engine::SceneGpu gpuScene = engine::uploadScene(ctx, scene);
     engine::GBuffer gbuffer = samples::renderGBuffer(ctx, gpuScene, view);
@@ -225,7 +233,8 @@ int run(const Options& o) {
       const gi::FrameInput in = samples::frameInput(gbuffer, view, *light);
       ctx.submitAndWait(
           [&](VkCommandBuffer cmd) { samples::check(lighting->record(cmd, in, &output)); });
-      for (engine::Image* image : {&gbuffer.depth, &gbuffer.normal, &gbuffer.diffuse, &gbuffer.specular})
+      for (engine::Image* image :
+           {&gbuffer.depth, &gbuffer.normal, &gbuffer.diffuse, &gbuffer.specular})
         image->setLayout(output.gbufferLayout);
       const std::vector<glm::dvec3> module =
           samples::indirectSum(samples::readIndirect(ctx, output, o.width, o.height));
@@ -266,6 +275,7 @@ int run(const Options& o) {
                   {"count", count},
                   {"method", o.method},
                   {"planar_emitters", o.planar},
+                  {"ism_points_per_vsgl", o.ismPoints},
                   {"width", o.width},
                   {"height", o.height},
                   {"rsm", o.rsm},
@@ -274,9 +284,10 @@ int run(const Options& o) {
                   {"stages", json::array()}};
       for (const auto& [stage, image] : stages) {
         row["stages"].push_back({{"name", stage}, {"score", score(*image, reference, regions)}});
-        const std::string base = (out / (name + "_" + std::to_string(count) + "_" + stage)).string();
+        const std::string base =
+            (out / (name + "_" + std::to_string(count) + "_" + stage)).string();
         engine::writeExr(base + ".exr", samples::imageFrom(o.width, o.height,
-                                                          [&](size_t i) { return (*image)[i]; }));
+                                                           [&](size_t i) { return (*image)[i]; }));
         engine::writeFalseColourError(base + "_error.png", int(o.width), int(o.height), *image,
                                       reference,
                                       engine::percentileAbsError(rsmStage, reference, 0.99) * 4.0);
@@ -302,9 +313,9 @@ int run(const Options& o) {
              "," + stage["name"].get<std::string>() + "," +
              std::to_string(stage["score"]["image"]["relative_mse"].get<double>()) + "," +
              std::to_string(stage["score"]["image"]["mean_ratio"].get<double>()) + "\n";
-  for (const auto& [file, text] : {std::pair{std::string("budget.json"), rows.dump(2) + "\n"},
-                                   std::pair{std::string("budget.md"), md},
-                                   std::pair{std::string("budget.csv"), csv}}) {
+  for (const auto& [file, text] :
+       {std::pair{std::string("budget.json"), rows.dump(2) + "\n"},
+        std::pair{std::string("budget.md"), md}, std::pair{std::string("budget.csv"), csv}}) {
     const std::filesystem::path path = out / file, partial = out / (file + ".partial");
     std::ofstream(partial) << text;
     std::filesystem::rename(partial, path);
