@@ -20,20 +20,25 @@ struct IsmFrame {
   vec3 bitangent;  // paraboloid v direction
   vec3 axis;       // hemisphere axis (unit)
   bool lit;        // false: the VSGL has no power, its map is empty and never consulted
+  float extent;    // m: the VSGL's spatial standard deviation (lookups behind the base plane)
 };
 
 // The ISM frame from a VSGL's two lobes: centre = mean of the lobe means weighted by their
-// powers (power.a), axis = the diffuse lobe's axis (the specular one when the diffuse lobe has
-// no power), tangents from Duff et al. 2017 ("Building an orthonormal basis, revisited"), which
+// powers (power.a), extent = the square root of their variances weighted the same way, axis =
+// the diffuse lobe's axis (the specular one when the diffuse lobe has no power), tangents from Duff et al. 2017 ("Building an orthonormal basis, revisited"), which
 // is continuous except across axis.z = 0 and needs no normalisation. The centre is lifted by
 // `centreOffset` metres along the axis so that the VSGL's own surface (which passes through the
 // mean on a flat receiver) falls below the hemisphere instead of occluding it.
-IsmFrame ismFrameFromLobes(vec3 diffuseMean, vec3 diffuseAxis, float diffuseWeight,
-                           vec3 specularMean, vec3 specularAxis, float specularWeight,
+IsmFrame ismFrameFromLobes(vec4 diffuseMeanVariance, vec3 diffuseAxis, float diffuseWeight,
+                           vec4 specularMeanVariance, vec3 specularAxis, float specularWeight,
                            float centreOffset) {
   IsmFrame f;
   float weight = diffuseWeight + specularWeight;
   f.lit = weight > 0.0;
+  vec3 diffuseMean = diffuseMeanVariance.xyz, specularMean = specularMeanVariance.xyz;
+  f.extent = f.lit ? sqrt(max((diffuseWeight * diffuseMeanVariance.w +
+                               specularWeight * specularMeanVariance.w) / weight, 0.0))
+                   : 0.0;
   vec3 axis = diffuseWeight > 0.0 ? diffuseAxis : specularAxis;
   f.axis = axis;
   f.centre = f.lit ? (diffuseWeight * diffuseMean + specularWeight * specularMean) / weight +
@@ -48,8 +53,8 @@ IsmFrame ismFrameFromLobes(vec3 diffuseMean, vec3 diffuseAxis, float diffuseWeig
 }
 
 IsmFrame ismFrame(Vsgl vsgl, float centreOffset) {
-  return ismFrameFromLobes(vsgl.diffuse.meanVariance.xyz, vsgl.diffuse.axisSharpness.xyz,
-                           vsgl.diffuse.power.a, vsgl.specular.meanVariance.xyz,
+  return ismFrameFromLobes(vsgl.diffuse.meanVariance, vsgl.diffuse.axisSharpness.xyz,
+                           vsgl.diffuse.power.a, vsgl.specular.meanVariance,
                            vsgl.specular.axisSharpness.xyz, vsgl.specular.power.a, centreOffset);
 }
 
@@ -77,10 +82,14 @@ float ismTexelTest(ivec2 origin, int size, ivec2 texel, float ref) {
 
 // Visibility in [0, 1] of VSGL `vsglIndex` (frame `f`) from the receiver at `position` (world)
 // with unit normal `normal` (the side the receiver is seen from, as the G-buffer stores it;
-// used only for the slope bias). Receivers outside the map's hemisphere (d_z <= 0, at or behind
-// the plane through the centre normal to the axis) and receivers of dark VSGLs get 1: the map
-// holds nothing about them, and the VSGL's lobes send them little light. The depth test
-// compares the receiver's distance minus
+// used only for the slope bias). Receivers of dark VSGLs get 1. Receivers outside the map's
+// hemisphere (d_z <= 0, at or behind the plane through the centre normal to the axis), of which
+// the map holds nothing, get 1 + d_z |d| / extent clamped to [0, 1]: the VSGL's own surface
+// hides it from behind, except from receivers within one standard deviation of its base plane,
+// where parts of a curved or folded cluster still face them (a floor-wall corner's wall lights
+// the floor beside it). It is continuous at the plane; without it the light of a roof's VSGLs
+// reached the room beneath through the roof (docs/techniques/ism.md, "Behind the hemisphere").
+// The depth test compares the receiver's distance minus
 //   depthBias + slopeBias * (distance * texel angle) * min(tan(receiver angle), ISM_MAX_SLOPE)
 // with the stored distance: the slope term is the depth change across one texel's footprint on
 // the receiver's plane, the self-occlusion a single point splat can cause. It applies only to
@@ -91,7 +100,7 @@ float ismVisibility(IsmParams params, IsmFrame f, uint vsglIndex, vec3 position,
   if (!f.lit) return 1.0;
   vec3 d = position - f.centre;
   float along = dot(d, f.axis);
-  if (!(along > 0.0)) return 1.0;
+  if (!(along > 0.0)) return clamp(1.0 + along / max(f.extent, 1e-6), 0.0, 1.0);
   float dist = length(d);
   int size = int(params.mapSize);
   vec2 uv = ismParaboloid(f, d, dist, along);

@@ -87,6 +87,7 @@ IsmFrame broadcastFrame(IsmFrame f, uint lane) {
   b.bitangent = subgroupBroadcast(f.bitangent, lane);
   b.axis = subgroupBroadcast(f.axis, lane);
   b.lit = subgroupBroadcast(f.lit, lane);
+  b.extent = subgroupBroadcast(f.extent, lane);
   return b;
 }
 

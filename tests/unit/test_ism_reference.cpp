@@ -106,24 +106,45 @@ TEST(IsmReference, RayCastSeesTheOccluderAndIgnoresTheReceiver) {
   EXPECT_TRUE(gi::ismRayCastVisible(quad, idx, {0, 0, 0}, {0.1, 0.1, 0.5}));  // before it
 }
 
-TEST(IsmReference, LookupTestsDepthWithBiasAndTreatsTheBackHemisphereAsLit) {
+// In the hemisphere the lookup is a depth test with bias. Behind its base plane the map holds
+// nothing: the VSGL is seen only within one standard deviation of its extent, fading linearly
+// from 1 at the plane (continuous with the lit side) to 0 at that depth.
+TEST(IsmReference, LookupTestsDepthWithBiasAndFadesBehindTheBasePlane) {
   const uint32_t size = 16;
   std::vector<double> atlas(size * size, 1.0);  // an occluder 1 m away in every direction
   gpu::Vsgl v{};
   v.diffuse.axisSharpness = glm::vec4(0, 0, 1, 1);
   v.diffuse.power = glm::vec4(1.0f);
+  v.diffuse.meanVariance = glm::vec4(0, 0, 0, 0.04f);  // extent 0.2 m
   const gi::IsmFrameReference f = gi::ismFrameReference(v, 0.0);
+  ASSERT_NEAR(f.extent, 0.2, 1e-6);
   gpu::IsmParams params{};
   params.mapSize = size;
   params.depthBias = 0.05f;
   for (uint32_t pcf : {ISM_PCF_NEAREST, ISM_PCF_BILINEAR, ISM_PCF_BOX3}) {
     params.pcf = pcf;
     const glm::dvec3 n(0, 0, 1);
-    EXPECT_EQ(gi::ismVisibilityReference(atlas, params, f, 0, {0.1, 0.2, 2.0}, n), 0.0);
-    EXPECT_NEAR(gi::ismVisibilityReference(atlas, params, f, 0, {0.1, 0.2, 1.02}, n), 1.0, 1e-12);
-    EXPECT_NEAR(gi::ismVisibilityReference(atlas, params, f, 0, {0.1, 0.2, 0.5}, n), 1.0, 1e-12);
-    EXPECT_EQ(gi::ismVisibilityReference(atlas, params, f, 0, {0.1, 0.2, -2.0}, n), 1.0);
+    auto visibility = [&](glm::dvec3 p) {
+      return gi::ismVisibilityReference(atlas, params, f, 0, p, n);
+    };
+    EXPECT_EQ(visibility({0.1, 0.2, 2.0}), 0.0);
+    EXPECT_NEAR(visibility({0.1, 0.2, 1.02}), 1.0, 1e-12);
+    EXPECT_NEAR(visibility({0.1, 0.2, 0.5}), 1.0, 1e-12);
+    EXPECT_NEAR(visibility({3.0, 0.0, 0.0}), 1.0, 1e-12);  // on the plane
+    // 1e-6: the variance is stored in fp32.
+    EXPECT_NEAR(visibility({3.0, 0.0, -0.05}), 0.75, 1e-6);  // a quarter of the extent behind
+    EXPECT_NEAR(visibility({0.1, 0.2, -0.1}), 0.5, 1e-6);
+    EXPECT_EQ(visibility({0.1, 0.2, -0.21}), 0.0);
+    EXPECT_EQ(visibility({0.1, 0.2, -2.0}), 0.0);
   }
+  // The extent weights both lobes' variances by their powers; a dark VSGL never shadows.
+  v.specular.power = glm::vec4(3.0f);
+  v.specular.meanVariance = glm::vec4(0, 0, 0, 0.08f);
+  EXPECT_NEAR(gi::ismFrameReference(v, 0.0).extent, std::sqrt(0.25 * 0.04 + 0.75 * 0.08), 1e-7);
+  gpu::Vsgl dark{};
+  EXPECT_EQ(gi::ismVisibilityReference(atlas, params, gi::ismFrameReference(dark, 0.0), 0,
+                                       {0.1, 0.2, -2.0}, {0, 0, 1}),
+            1.0);
 }
 
 TEST(IsmSettings, DefaultsAreValidAndEachBadFieldIsNamed) {

@@ -69,11 +69,14 @@ IsmFrameReference ismFrameReference(const gpu::Vsgl& vsgl, double centreOffset) 
   const double wd = vsgl.diffuse.power.a, ws = vsgl.specular.power.a;
   f.lit = wd + ws > 0.0;
   f.axis = glm::dvec3(wd > 0.0 ? vsgl.diffuse.axisSharpness : vsgl.specular.axisSharpness);
-  if (f.lit)
+  if (f.lit) {
     f.centre =
         (wd * glm::dvec3(vsgl.diffuse.meanVariance) + ws * glm::dvec3(vsgl.specular.meanVariance)) /
             (wd + ws) +
         centreOffset * f.axis;
+    f.extent = std::sqrt(std::max(
+        (wd * vsgl.diffuse.meanVariance.w + ws * vsgl.specular.meanVariance.w) / (wd + ws), 0.0));
+  }
   const engine::OrthonormalBasis basis = engine::orthonormalBasis(f.axis);
   f.tangent = basis.tangent;
   f.bitangent = basis.bitangent;
@@ -178,7 +181,8 @@ double ismVisibilityReference(std::span<const double> atlas, const gpu::IsmParam
                               glm::dvec3 position, glm::dvec3 normal) {
   if (!frame.lit) return 1.0;
   const IsmProjection proj = ismProjectReference(frame, position);
-  if (!(proj.cosAxis > 0.0)) return 1.0;
+  if (!(proj.cosAxis > 0.0))
+    return std::clamp(1.0 + proj.cosAxis * proj.distance / std::max(frame.extent, 1e-6), 0.0, 1.0);
   const auto size = static_cast<int>(params.mapSize);
   const glm::dvec3 dir = (position - frame.centre) / proj.distance;
   const double cosReceiver = std::max(-glm::dot(normal, dir), 0.0);

@@ -44,6 +44,7 @@ struct IsmFrameReference {
   glm::dvec3 bitangent{0.0, 1.0, 0.0};
   glm::dvec3 axis{0.0, 0.0, 1.0};
   bool lit = false;
+  double extent = 0.0;  // m, the lobes' power-weighted spatial standard deviation
 };
 // ismFrameFromLobes of common/ism_lookup.glsl.
 IsmFrameReference ismFrameReference(const gpu::Vsgl& vsgl, double centreOffset);
