@@ -101,7 +101,9 @@ struct PlannerSettings {
   bool skipSky = true;
   // Nothing can occlude (SceneGeometry::canOcclude = false): no ISM build or test. Unlike the
   // others this decision changes the image: it removes the ISMs' own errors (light lost to
-  // their holes and biases), where the exact visibility is 1.
+  // their holes and biases), where the exact visibility is 1. In an open-top room under a sun
+  // (the walls' lit outer faces must not light the room) it lowers the relMSE against the path
+  // tracer from 0.0038 to 0.0032 (tests/gpu/test_accuracy_gate.cpp).
   bool skipWithoutOccluders = true;
   // Pixels with no glossy term (F0 = F90 = 0: a dielectric with KHR_materials_specular's
   // strength 0) are shaded without it. Per texel, in adaptive shading's queues (with adaptive
