@@ -25,8 +25,9 @@ struct IsmFrame {
 
 // The ISM frame from a VSGL's two lobes: centre = mean of the lobe means weighted by their
 // powers (power.a), extent = the square root of their variances weighted the same way, axis =
-// the diffuse lobe's axis (the specular one when the diffuse lobe has no power), tangents from Duff et al. 2017 ("Building an orthonormal basis, revisited"), which
-// is continuous except across axis.z = 0 and needs no normalisation. The centre is lifted by
+// the diffuse lobe's axis (the specular one when the diffuse lobe has no power), tangents from
+// Duff et al. 2017 ("Building an orthonormal basis, revisited"), which is continuous except
+// across axis.z = 0 and needs no normalisation. The centre is lifted by
 // `centreOffset` metres along the axis so that the VSGL's own surface (which passes through the
 // mean on a flat receiver) falls below the hemisphere instead of occluding it.
 IsmFrame ismFrameFromLobes(vec4 diffuseMeanVariance, vec3 diffuseAxis, float diffuseWeight,
