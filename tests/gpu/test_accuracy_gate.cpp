@@ -14,6 +14,7 @@
 #include "gpu_fixture.h"
 #include "path_tracer.h"
 #include "reference_cache.h"
+#include "room_shell.h"
 
 namespace {
 
@@ -136,30 +137,12 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, AccuracyGate,
 // a low sun: the sun lights the outer face of one wall, whose light the wall itself keeps out of
 // the room, and without ISMs only the light model (planar emitters, a flat cluster sends
 // nothing behind its plane) keeps it out. The Cornell box's walls and floor without the ceiling
-// and the boxes, a sun from above the right wall (+x) at 40 degrees from the vertical. Measured
-// at N = 512: relMSE 0.0032 with the ISMs skipped, 0.0038 with them (means 0.963, 0.946); with
-// planar emitters off (checked by hand) 0.036 against 0.023, which fails.
+// and the boxes (testing_gpu::roomShell), a sun from above the right wall (+x) at 40 degrees from
+// the vertical. Measured at N = 512: relMSE 0.0032 with the ISMs skipped, 0.0038 with them (means
+// 0.963, 0.946); with planar emitters off (checked by hand) 0.036 against 0.023, which fails.
 TEST_F(AccuracyTest, SkippingTheIsmsInAnOpenRoomSavesMoreErrorThanItCosts) {
   const engine::Scene cornell = engine::makeBuiltinScene("cornell");
-  const engine::Bounds b = cornell.bounds();
-  engine::Scene room = cornell;
-  room.indices.clear();
-  room.triangleMaterial.clear();
-  for (uint32_t t = 0; t < cornell.triangleCount(); ++t) {
-    const glm::vec3 p0 = cornell.positions[cornell.indices[3 * t]];
-    const glm::vec3 p1 = cornell.positions[cornell.indices[3 * t + 1]];
-    const glm::vec3 p2 = cornell.positions[cornell.indices[3 * t + 2]];
-    // A wall or the floor: on a face of the bounds other than the top.
-    bool boundary = false;
-    for (int axis = 0; axis < 3; ++axis)
-      for (const float plane : {b.min[axis], b.max[axis]})
-        boundary =
-            boundary || (std::abs(p0[axis] - plane) < 1e-4f && std::abs(p1[axis] - plane) < 1e-4f &&
-                         std::abs(p2[axis] - plane) < 1e-4f && !(axis == 1 && plane == b.max.y));
-    if (!boundary) continue;
-    for (int k = 0; k < 3; ++k) room.indices.push_back(cornell.indices[3 * t + k]);
-    room.triangleMaterial.push_back(cornell.triangleMaterial[t]);
-  }
+  engine::Scene room = testing_gpu::roomShell(cornell, true);
   engine::Light sun;
   sun.name = "sun";
   sun.type = engine::LightType::Directional;

@@ -16,6 +16,7 @@
 #include "gi/indirect_lighting.h"
 #include "gi_host.h"
 #include "gpu_fixture.h"
+#include "room_shell.h"
 
 namespace {
 
@@ -383,29 +384,7 @@ TEST_F(IndirectLightingApiTest, SkySkipLeavesTheImageUnchanged) {
 // and biases), which the test reports. The sample host's bound must see the room as
 // occlusion-free, and the full box and the atrium as not.
 TEST_F(IndirectLightingApiTest, PlannerSkipsTheIsmsWhenNothingCanOcclude) {
-  engine::Scene room = scene_;
-  const engine::Bounds b = scene_.bounds();
-  room.indices.clear();
-  room.triangleMaterial.clear();
-  for (uint32_t t = 0; t < scene_.triangleCount(); ++t) {
-    const glm::vec3 p[3] = {scene_.positions[scene_.indices[3 * t]],
-                            scene_.positions[scene_.indices[3 * t + 1]],
-                            scene_.positions[scene_.indices[3 * t + 2]]};
-    const glm::vec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
-    // A wall: on one face of the room's bounds, facing in. (The boxes' bottoms lie on the
-    // floor's plane but face down.)
-    bool wall = false;
-    for (int axis = 0; axis < 3; ++axis)
-      for (float side : {-1.0f, 1.0f}) {
-        const float plane = side < 0.0f ? b.min[axis] : b.max[axis];
-        bool on = -side * n[axis] > 0.999f;
-        for (const glm::vec3& q : p) on = on && std::abs(q[axis] - plane) < 1e-4f;
-        wall = wall || on;
-      }
-    if (!wall) continue;
-    for (int k = 0; k < 3; ++k) room.indices.push_back(scene_.indices[3 * t + k]);
-    room.triangleMaterial.push_back(scene_.triangleMaterial[t]);
-  }
+  const engine::Scene room = testing_gpu::roomShell(scene_, false);
   ASSERT_LT(room.triangleCount(), scene_.triangleCount());
   EXPECT_FALSE(samples::canOcclude(room));
   // The checker is a floor in a corner of two walls: nothing there can occlude either.
