@@ -176,8 +176,9 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
   plan.environmentConverted = environment && environmentChanged;
   plan.visibility = s.ismEnabled;
   plan.glossy = s.glossy;
-  plan.adaptive = s.adaptive.enabled;
-  plan.culled = s.culling.enabled;
+  const bool points = s.method == VsglMethod::Vpl;  // point lights: no adaptive pyramid or bounds
+  plan.adaptive = s.adaptive.enabled && !points;
+  plan.culled = s.culling.enabled && !points;
   plan.skySkipped = s.planner.skipSky && !plan.adaptive;  // adaptive shading never queues sky
   if (!s.ismEnabled) {
     plan.reasons.push_back("ism: off in the settings: no ISM build or test");
@@ -192,17 +193,20 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
     plan.reasons.push_back(
         "glossy: no surface has a specular lobe (SceneGeometry.maxSpecular = 0): no specular VSGL "
         "lobes, specular attribute mips or glossy shading");
-  } else if (s.planner.skipGlossyWithoutSpecular && s.glossy && s.adaptive.enabled) {
+  } else if (s.planner.skipGlossyWithoutSpecular && s.glossy && plan.adaptive) {
     plan.reasons.push_back("glossy: texels with F0 = F90 = 0 are shaded without the glossy term");
   }
   if (plan.skySkipped)
     plan.reasons.push_back("sky: subgroups that see only sky skip the VSGL loop");
-  if (s.adaptive.enabled)
+  if (points && (s.adaptive.enabled || s.culling.enabled))
+    plan.reasons.push_back(
+        "vpl: the VPL baseline shades every pixel with every VPL: no adaptive shading or culling");
+  if (plan.adaptive)
     plan.reasons.push_back("adaptive: shaded from level " +
                            std::to_string(s.adaptive.coarsestLevel) +
                            " down, interpolated where surface, material and light agree; sky "
                            "never shaded");
-  if (s.culling.enabled) {
+  if (plan.culled) {
     char budget[32];
     std::snprintf(budget, sizeof(budget), "%g", s.culling.budget);
     plan.reasons.push_back(
@@ -330,6 +334,7 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
       (settings.planarEmitters ? VSGL_SHADE_PLANAR : 0u);
   VsglShade::Inputs shading{vsgls, settings.vsglCount, flags, &ism.atlas(), ism.params()};
   shading.cullBudget = settings.culling.budget;
+  shading.points = settings.method == VsglMethod::Vpl;
   if (plan.culled) shade.recordStatsReset(cmd);
   if (plan.adaptive)
     adaptive.record(cmd, gbuffer, camera, shading, settings.adaptive,
@@ -365,9 +370,11 @@ void IndirectLighting::Impl::recordBlackOutputs(VkCommandBuffer cmd) {
 
 const engine::Buffer& IndirectLighting::Impl::recordVsgls(VkCommandBuffer cmd,
                                                           const RsmView& rsmView, uint32_t rule) {
-  if (settings.method == VsglMethod::FilteredImportanceSampling) {
-    generator.record(cmd, attributes, rsmView, {settings.vsglCount, settings.kernelScale, rule},
-                     &profiler);
+  if (settings.method == VsglMethod::FilteredImportanceSampling ||
+      settings.method == VsglMethod::Vpl) {
+    const uint32_t generation = settings.method == VsglMethod::Vpl ? VSGL_RULE_POINT : rule;
+    generator.record(cmd, attributes, rsmView,
+                     {settings.vsglCount, settings.kernelScale, generation}, &profiler);
     return generator.vsgls();
   }
   if (!kmeans) kmeans.emplace(ctx, settings.rsmSize, maxCount);

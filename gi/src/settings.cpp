@@ -36,10 +36,9 @@ std::string validateSettings(const Settings& s) {
     return field("rule", std::to_string(uint32_t(s.rule)), "is neither Tok15 nor Modified");
   if (s.pdf != PdfKind::Flux && s.pdf != PdfKind::Brsm)
     return field("pdf", std::to_string(uint32_t(s.pdf)), "is neither Flux nor Brsm");
-  if (s.method != VsglMethod::FilteredImportanceSampling && s.method != VsglMethod::KmeansImage &&
-      s.method != VsglMethod::KmeansWorld)
+  if (s.method > VsglMethod::Vpl)
     return field("method", std::to_string(uint32_t(s.method)),
-                 "is none of FilteredImportanceSampling, KmeansImage, KmeansWorld");
+                 "is none of FilteredImportanceSampling, KmeansImage, KmeansWorld, Vpl");
   if (s.kmeans.iterations < 1 || s.kmeans.iterations > KmeansClustering::kMaxIterations)
     return field(
         "kmeans.iterations", std::to_string(s.kmeans.iterations),

@@ -53,7 +53,8 @@ const char* usage() {
          "                  of the preset's\n"
          "  --methods LIST  comma-separated methods instead of the preset's: tok15, modified,\n"
          "                  modified-full, modified-culled, modified-full-culled,\n"
-         "                  modified-sg-emitter, modified-full-sg-emitter, kmeans-2d, kmeans-3d\n"
+         "                  modified-sg-emitter, modified-full-sg-emitter, kmeans-2d, kmeans-3d,\n"
+         "                  vpl (the GPU VPL baseline)\n"
          "  --counts LIST   comma-separated VSGL counts, 1..65535, instead of the preset's\n"
          "  --width N --height N  image size, 1..8192, instead of the preset's (the path-traced\n"
          "                  reference's cost grows with the pixel count)\n"
@@ -79,7 +80,7 @@ Options parseOptions(int argc, char** argv) {
           throw engine::Error("--methods: '" + m +
                               "' is not one of tok15, modified, modified-full, modified-culled, "
                               "modified-full-culled, modified-sg-emitter, "
-                              "modified-full-sg-emitter, kmeans-2d, kmeans-3d");
+                              "modified-full-sg-emitter, kmeans-2d, kmeans-3d, vpl");
     } else if (arg == "--counts")
       o.counts = samples::parseUintList(arg, args.value(), 1, 65535);
     else if (arg == "--width")
@@ -123,6 +124,7 @@ gi::Settings settingsFor(const bench::Preset& p, const std::string& method, uint
   if (method == "modified-culled" || method == "modified-full-culled") s.culling.enabled = true;
   if (method == "kmeans-2d") s.method = gi::VsglMethod::KmeansImage;
   if (method == "kmeans-3d") s.method = gi::VsglMethod::KmeansWorld;
+  if (method == "vpl") s.method = gi::VsglMethod::Vpl;
   if (std::string bad = gi::validateSettings(s); !bad.empty()) throw engine::Error(bad);
   return s;
 }
@@ -311,7 +313,7 @@ int run(const Options& o) {
     groups.emplace_back();
     for (const std::string& method : p.methods)
       for (float k : p.kernelScales)
-        if (!bench::isKmeans(method) || k == p.kernelScales.front())
+        if (bench::hasKernelScale(method) || k == p.kernelScales.front())
           groups.back().push_back({method, count, k});
   }
   for (uint32_t rsm : p.vplRsmSizes) groups.push_back({{"vpl-gather", rsm, 0.0f}});

@@ -42,7 +42,7 @@ bool isVplGather(const json& row) {
 
 // K, or a dash for k-means (its rows carry the preset's first K, which does not apply).
 std::string kColumn(const json& row) {
-  return isKmeans(row["method"]) ? "—" : format("%g", row["k"].get<double>());
+  return !hasKernelScale(row["method"]) ? "—" : format("%g", row["k"].get<double>());
 }
 
 std::string rowsTable(const json& rows, const std::string& scene) {
@@ -66,7 +66,7 @@ std::string rowsTable(const json& rows, const std::string& scene) {
                 r["method"].get<std::string>().c_str(), r["count"].get<uint32_t>(),
                 kColumn(r).c_str(), ms(f["median_ms"]).c_str(), ms(f["p5_ms"]).c_str(),
                 ms(f["p95_ms"]).c_str(), ms(generationMs(r)).c_str(),
-                ms(rsmGenerationMs(r)).c_str(), ms(passMedian(r, "vsgl shading")).c_str()) +
+                ms(rsmGenerationMs(r)).c_str(), ms(shadingMs(r)).c_str()) +
          error + "\n";
   }
   return t;

@@ -13,7 +13,8 @@ const std::vector<std::string>& methods() {
                                                  "modified-sg-emitter",
                                                  "modified-full-sg-emitter",
                                                  "kmeans-2d",
-                                                 "kmeans-3d"};
+                                                 "kmeans-3d",
+                                                 "vpl"};
   return names;
 }
 
@@ -22,9 +23,14 @@ Preset preset(const std::string& name) {
   // N and K, and one culling variant shows its trade. The SG emitter (planar emitters off) runs
   // at full rate, where the two shade the same pixel-VSGL pairs: what the planar emitters cost
   // and buy.
-  const std::vector<std::string> allMethods = {
-      "tok15",     "modified", "modified-full", "modified-culled", "modified-full-sg-emitter",
-      "kmeans-2d", "kmeans-3d"};
+  const std::vector<std::string> allMethods = {"tok15",
+                                               "modified",
+                                               "modified-full",
+                                               "modified-culled",
+                                               "modified-full-sg-emitter",
+                                               "kmeans-2d",
+                                               "kmeans-3d",
+                                               "vpl"};
   const std::vector<std::string> allScenes = {"cornell", "checker", "atrium"};
   if (name == "ci")  // one small scene: checks that every method runs and scores, not speed
     return {.name = "ci",

@@ -28,7 +28,7 @@ struct Preset {
 };
 
 // Every method a row can run: vsgl_render's --method names (tok15, modified, kmeans-2d,
-// kmeans-3d) and variants of modified FIS: modified-full (adaptive shading off, every pixel
+// kmeans-3d, vpl) and variants of modified FIS: modified-full (adaptive shading off, every pixel
 // shaded), modified-culled and modified-full-culled (VSGL culling on), modified-sg-emitter and
 // modified-full-sg-emitter (planar emitters off: the SG emitter for every VSGL).
 const std::vector<std::string>& methods();

@@ -12,10 +12,15 @@ namespace bench {
 
 // Whether a method is one of the k-means baselines, which have no K.
 bool isKmeans(const std::string& method);
+// Whether a method reads K (the filtered ones; not k-means, not the VPL baseline).
+bool hasKernelScale(const std::string& method);
 // The median time of pass `name` in a row (0 when it has none).
 double passMedian(const nlohmann::json& row, const std::string& name);
-// The VSGL stage of a row: filtered sampling, or every k-means pass.
+// The VSGL stage of a row: filtered sampling (VPL sampling for the VPL baseline), or every
+// k-means pass.
 double generationMs(const nlohmann::json& row);
+// The shading pass: VSGL shading, or the VPL baseline's.
+double shadingMs(const nlohmann::json& row);
 // Every pass that turns the RSM into VSGLs, [S3] Table 1's lower half: the attributes, their
 // pyramids and the PDF's, and filtered sampling; or the attributes and every k-means pass.
 // k-means reads only the pyramids' level 0 (and the PDF pyramid only to seed), so the

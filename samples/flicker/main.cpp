@@ -67,7 +67,8 @@ const char* usage() {
          "                     (default 64: k-means converges from its seeds)\n"
          "  --block N          the image flicker compares N x N pixel block means, 1..64 (1 =\n"
          "                     per pixel; default 8)\n"
-         "  --methods LIST     comma-separated: tok15, modified, kmeans-2d, kmeans-3d; a filtered\n"
+         "  --methods LIST     comma-separated: tok15, modified, kmeans-2d, kmeans-3d, vpl; a "
+         "filtered\n"
          "                     method takes a kernel scale as -kK (modified-k4); modified-full\n"
          "                     shades every pixel (adaptive shading off) (default\n"
          "                     tok15,modified,modified-k4,kmeans-2d,kmeans-3d)\n"
@@ -146,11 +147,13 @@ gi::Settings methodSettings(const std::string& word, const Options& o) {
     s.method = gi::VsglMethod::KmeansImage;
   else if (method == "kmeans-3d")
     s.method = gi::VsglMethod::KmeansWorld;
+  else if (method == "vpl")
+    s.method = gi::VsglMethod::Vpl;
   else if (method != "modified")
     throw engine::Error(
         "--methods: '" + word +
         "' is not one of tok15, modified (each with an optional -kK), modified-full, "
-        "kmeans-2d, kmeans-3d");
+        "kmeans-2d, kmeans-3d, vpl");
   if (std::string bad = gi::validateSettings(s); !bad.empty()) throw engine::Error(bad);
   return s;
 }

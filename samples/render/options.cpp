@@ -35,7 +35,8 @@ const char* usage() {
          "  --no-indirect        direct light only\n"
          "  --method NAME        modified (modified FIS, default), tok15 (Tokuyoshi 2015's kernel\n"
          "                       rule), or the baselines kmeans-2d / kmeans-3d (k-means of the\n"
-         "                       RSM's texels in image or world space)\n"
+         "                       RSM's texels in image or world space) and vpl (instant\n"
+         "                       radiosity: --count point lights from the same PDF)\n"
          "  --kmeans-iterations N  k-means iterations per frame, 1..64 (default 4)\n"
          "  --kmeans-weights W   pdf (default) or uniform texel weights in the k-means centres\n"
          "  --kmeans-fresh       seed k-means afresh each frame (default: previous centres)\n"
@@ -128,7 +129,8 @@ Options parseOptions(int argc, char** argv) {
           {{"modified", {gi::VsglMethod::FilteredImportanceSampling, gi::KernelRule::Modified}},
            {"tok15", {gi::VsglMethod::FilteredImportanceSampling, gi::KernelRule::Tok15}},
            {"kmeans-2d", {gi::VsglMethod::KmeansImage, gi::KernelRule::Modified}},
-           {"kmeans-3d", {gi::VsglMethod::KmeansWorld, gi::KernelRule::Modified}}});
+           {"kmeans-3d", {gi::VsglMethod::KmeansWorld, gi::KernelRule::Modified}},
+           {"vpl", {gi::VsglMethod::Vpl, gi::KernelRule::Modified}}});
     else if (arg == "--kmeans-iterations")
       o.gi.kmeans.iterations = parseUint(arg, args.value(), 1, 64);
     else if (arg == "--kmeans-weights")

@@ -18,8 +18,9 @@ void PassTable::print(uint32_t frames, uint32_t vsglCount, uint32_t shadedPixels
   for (const auto& name : order_) {
     const double ms = engine::median(times_.at(name));
     std::printf("  %-34s %9.3f %5u", name.c_str(), ms, dispatches_.at(name));
-    if (name == "gi vsgl shading" && vsglCount > 0)
-      std::printf("   (%.2f ns per shaded pixel-VSGL pair)",
+    if ((name == "gi vsgl shading" || name == "gi vpl shading") && vsglCount > 0)
+      std::printf("   (%.2f ns per shaded pixel-%s pair)",
+                  name == "gi vpl shading" ? "VPL" : "VSGL",
                   ms * 1e6 / (double(vsglCount) * shadedPixels));
     std::printf("\n");
   }

@@ -4,6 +4,7 @@
 // modified FIS bisection) -> the six attribute pyramids filtered with that kernel -> two lobes.
 // Trilinear filtering is done by hand from texelFetch with exact fp32 weights: the bisection
 // compares filtered masses, and the sampler's fixed-point weights would blur the comparison.
+// VSGL_RULE_POINT makes the VPL baseline's point lights instead: one texel each.
 // The CPU twin is generateVsglsReference (gi/src/reference/vsgl_sampling.cpp).
 #extension GL_GOOGLE_include_directive : require
 
@@ -67,26 +68,43 @@ float tok15Level(float density) {
   return clamp(0.5 * log2(pc.kernelScale * m / (float(pc.count) * density)), 0.0, top);
 }
 
+// VSGL_RULE_POINT: the area of the surface patch one texel covers at offset y from the origin
+// with unit normal n: its solid angle from the light (A cos^3 on the unit-distance plane) times
+// t^2 / cos at the surface, or a parallel beam's A / cos (the CPU twin is vplTexelArea). n = 0
+// (a texel without diffuse power keeps no normal): the patch faces the light.
+float texelPatchArea(vec3 y, vec3 n) {
+  bool perspective = pc.perspective != 0u;
+  vec3 w = perspective ? normalize(y) : pc.texelPatch.xyz;  // light -> surface
+  float cosine = dot(n, n) > 0.0 ? max(abs(dot(n, w)), 1e-6) : 1.0;
+  if (!perspective) return pc.texelPatch.w / cosine;
+  float c = dot(w, pc.texelPatch.xyz);
+  return pc.texelPatch.w * c * c * c * dot(y, y) / cosine;
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   vec2 u = fibonacciPoint(i, pc.count);
   ivec2 node = warpToTexel(u, int(pc.topLevel));
   float size = float(pc.size);
-  vec2 x = min((vec2(node) + u) / size, (vec2(node) + kOneBelow) / size);
+  bool point = pc.rule == VSGL_RULE_POINT;
+  // A VPL reads its texel alone: level 0 at the texel's centre, where the bilinear weights are
+  // exactly 0 and 1 (a power-of-two size scales the centre exactly).
+  vec2 x = point ? (vec2(node) + 0.5) / size : min((vec2(node) + u) / size, (vec2(node) + kOneBelow) / size);
   float pTop = pdfTexel(ivec2(0), int(pc.topLevel));
   float density = pTop > 0.0 ? pdfTexel(node, 0) / pTop : 0.0;
   bool modified = pc.rule == VSGL_RULE_MODIFIED;
-  float level = modified ? modifiedFisLevel(x, pTop) : tok15Level(density);
+  float level = point ? 0.0 : modified ? modifiedFisLevel(x, pTop) : tok15Level(density);
   // The diffuse axis sums carry the PDF in alpha: one filtered fetch serves both.
   vec4 diffuseAxisSums = trilinear(diffuseAxis, x, level);
   float filtered = pTop > 0.0 ? diffuseAxisSums.w / pTop : 0.0;
   // Cluster sums from per-texel means (vsgl-math.md 5.3 units trap): modified FIS scales the
-  // kernel to mass 1/N, M / (N p~); Tok15 divides by the unfiltered density, M / max(N p, 1).
+  // kernel to mass 1/N, M / (N p~); Tok15 divides by the unfiltered density, M / max(N p, 1);
+  // a VPL is the texel's own value over N p, the estimator of importance sampling.
   float m = size * size;
   float scale = !(pTop > 0.0) ? 0.0
-              : modified ? (filtered > 0.0 ? m / (float(pc.count) * filtered) : 0.0)
-                         : m / max(float(pc.count) * density, 1.0);
+              : modified || point ? (filtered > 0.0 ? m / (float(pc.count) * filtered) : 0.0)
+                                  : m / max(float(pc.count) * density, 1.0);
   Vsgl v;
   v.diffuse = buildVsglLobe(scale * trilinear(diffusePower, x, level),
                         scale * trilinear(diffusePosition, x, level),
@@ -94,6 +112,16 @@ void main() {
   v.specular = buildVsglLobe(scale * trilinear(specularPower, x, level),
                          scale * trilinear(specularPosition, x, level),
                          scale * trilinear(specularAxis, x, level), pc.origin.xyz);
+  // A VPL with power stands for 1 / (N p) of the texel, but never for less than the texel
+  // itself: as N grows it becomes the texel, and the VPL image the gather over every texel. Its
+  // disc of area a has the per-axis variance a / (4 pi) (docs/techniques/vpl-baseline.md).
+  if (point && v.diffuse.power.a + v.specular.power.a > 0.0) {
+    bool hasNormal = v.diffuse.power.a > 0.0;
+    vec3 mean = hasNormal ? v.diffuse.meanVariance.xyz : v.specular.meanVariance.xyz;
+    vec3 normal = hasNormal ? v.diffuse.axisSharpness.xyz : vec3(0.0);
+    float area = texelPatchArea(mean - pc.origin.xyz, normal) * max(1.0, scale);
+    v.diffuse.meanVariance.w = v.specular.meanVariance.w = area / 12.566370614359172;  // 4 pi
+  }
   v.kernel = vec4(x, level, filtered);
   vsgls[i] = v;
 }

@@ -8,6 +8,9 @@
 // Kernel-size rules (vsgl-math.md section 5).
 #define VSGL_RULE_TOK15 0u     // l = log4(K M / (N p(x))), estimator f~ / max(N p(x), 1)
 #define VSGL_RULE_MODIFIED 1u  // 4^l p~(x, l) / M = K / N by bisection, estimator f~ / (N p~)
+// The VPL baseline (docs/techniques/vpl-baseline.md): the level-0 texel under the lattice point,
+// estimator f / (N p), both lobes' variance that of the disc the VPL stands for.
+#define VSGL_RULE_POINT 2u
 
 // Per-VPL lobe encodings (section 3.3): the diffuse lobe is the vMF fitted to the Lambert pdf,
 // sharpness 2.292504, whose Banerjee mean length is this constant.

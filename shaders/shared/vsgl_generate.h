@@ -8,18 +8,22 @@
 SHARED_BEGIN
 
 struct VsglGeneratePush {
-  vec4 origin;        // xyz = RSM origin (world), added to every mean
+  vec4 origin;  // xyz = RSM origin (world), added to every mean
+  // VSGL_RULE_POINT only, the patch a texel covers: xyz = unit direction the light travels,
+  // w = texel area (spot: on the plane at unit distance; directional: m^2), as RsmView.
+  vec4 texelPatch;
   uint count;         // N, VSGLs to generate
-  uint rule;          // VSGL_RULE_TOK15 or VSGL_RULE_MODIFIED
+  uint rule;          // VSGL_RULE_TOK15, VSGL_RULE_MODIFIED or VSGL_RULE_POINT
   uint size;          // pyramid base size (power of two)
   uint topLevel;      // log2(size)
   float kernelScale;  // K (paper: 1); larger = blurrier, temporally steadier kernels
-  uint pad0;
+  // VSGL_RULE_POINT only: 1 = spot (perspective RSM), 0 = directional (orthographic).
+  uint perspective;
   uint pad1;
   uint pad2;
 };
 
 SHARED_END
 
-SHARED_ASSERT_SIZE(VsglGeneratePush, 48);
+SHARED_ASSERT_SIZE(VsglGeneratePush, 64);
 #endif

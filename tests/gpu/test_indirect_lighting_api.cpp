@@ -145,13 +145,15 @@ class IndirectLightingApiTest : public testing_gpu::GpuTest {
 };
 
 TEST_F(IndirectLightingApiTest, HostRecordsAndComposites) {
-  // Both PDFs with filtered importance sampling, and the two k-means baselines, whose VSGLs
-  // must shade through the same path to finite, non-negative light.
+  // Both PDFs with filtered importance sampling, the two k-means baselines, whose VSGLs must
+  // shade through the same path to finite, non-negative light, and the VPL baseline's point
+  // lights through theirs.
   const std::pair<gi::PdfKind, gi::VsglMethod> runs[] = {
       {gi::PdfKind::Brsm, gi::VsglMethod::FilteredImportanceSampling},
       {gi::PdfKind::Flux, gi::VsglMethod::FilteredImportanceSampling},
       {gi::PdfKind::Brsm, gi::VsglMethod::KmeansImage},
-      {gi::PdfKind::Flux, gi::VsglMethod::KmeansWorld}};
+      {gi::PdfKind::Flux, gi::VsglMethod::KmeansWorld},
+      {gi::PdfKind::Brsm, gi::VsglMethod::Vpl}};
   for (auto [pdf, method] : runs) {
     SCOPED_TRACE("method " + std::to_string(int(method)));
     gi::Settings settings = smallSettings();
@@ -210,13 +212,14 @@ TEST_F(IndirectLightingApiTest, HostRecordsAndComposites) {
 
     const std::vector<gi::PassTime> times = lighting->lastFrameTimes();
     bool shading = false, total = false, clustered = false;
+    const bool points = method == gi::VsglMethod::Vpl;
     for (const gi::PassTime& t : times) {
-      shading |= t.name == "vsgl shading";
+      shading |= t.name == (points ? "vpl shading" : "vsgl shading");
       total |= t.name == "frame" && t.ms > 0.0;
       clustered |= t.name == "k-means assign";
     }
     EXPECT_TRUE(shading && total);
-    EXPECT_EQ(clustered, method != gi::VsglMethod::FilteredImportanceSampling);
+    EXPECT_EQ(clustered, method != gi::VsglMethod::FilteredImportanceSampling && !points);
   }
 }
 

@@ -16,6 +16,7 @@
 #include "passes/ism.h"
 #include "passes/vsgl_shade.h"
 #include "reference/ism_reference.h"
+#include "reference/vpl_shade_reference.h"
 #include "reference/vsgl_shade_reference.h"
 #include "shared/vsgl_shade.h"
 #include "test_vsgls.h"
@@ -45,9 +46,10 @@ class VsglShadeTest : public testing_gpu::GpuTest {
   // Shades the G-buffer with `vsgls`; their ISMs are built from the scene first (read with
   // VSGL_SHADE_VISIBILITY, bound either way), and `atlas` receives them as tile-major distances.
   // With VSGL_SHADE_CULL, `cullBudget` is tau and `stats` receives the pass's counts.
+  // `points`: the records are VPLs, shaded by vpl_shade.comp.
   Shaded shade(const std::vector<gpu::Vsgl>& vsgls, uint32_t flags,
                std::vector<double>* atlas = nullptr, float cullBudget = 0.0f,
-               gpu::VsglShadeStats* stats = nullptr) {
+               gpu::VsglShadeStats* stats = nullptr, bool points = false) {
     const auto count = static_cast<uint32_t>(vsgls.size());
     engine::Buffer buffer(ctx(), vsgls.size() * sizeof(gpu::Vsgl),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload);
@@ -61,6 +63,7 @@ class VsglShadeTest : public testing_gpu::GpuTest {
       engine::computeBarrier(cmd);
       gi::VsglShade::Inputs in{&buffer, count, flags, &ism.atlas(), ism.params()};
       in.cullBudget = cullBudget;
+      in.points = points;
       pass.recordStatsReset(cmd);
       pass.record(cmd, *gbuffer_, view_, in, out);
       pass.recordStatsReadback(cmd);
@@ -101,6 +104,89 @@ class VsglShadeTest : public testing_gpu::GpuTest {
     r.f90 = s.f90;
     r.roughness = s.roughness;
     return r;
+  }
+
+  // GPU against the double twin `cpu`, per pixel and channel, with MatchesReference's tolerance
+  // (2e-3 of the value plus 1e-5 of the image's largest); every value must be finite. Without
+  // `steps` the first few values over fail the test; with it (ISM visibility, whose depth test
+  // may step on 1 % of the pixels) at most 1 % of the pixels may be over. The twin's image must
+  // not be black (nor its glossy term, with `glossy`): a comparison of zeros would prove nothing.
+  void expectMatches(const Shaded& gpu, const std::vector<gi::IndirectRadiance>& cpu, bool steps,
+                     bool glossy, const std::string& label) const {
+    double largest[2] = {0.0, 0.0};
+    for (const gi::IndirectRadiance& r : cpu) {
+      largest[0] = std::max({largest[0], r.diffuse.r, r.diffuse.g, r.diffuse.b});
+      largest[1] = std::max({largest[1], r.glossy.r, r.glossy.g, r.glossy.b});
+    }
+    ASSERT_GT(largest[0], 0.0) << label;
+    if (glossy) {
+      ASSERT_GT(largest[1], 0.0) << label;
+    }
+    double worst[2] = {0.0, 0.0};
+    size_t failures = 0, failedPixels = 0;
+    for (size_t i = 0; i < cpu.size(); ++i) {
+      bool pixelFailed = false;
+      for (int term = 0; term < 2; ++term) {
+        const glm::dvec3 want = term == 0 ? cpu[i].diffuse : cpu[i].glossy;
+        const glm::dvec3 got(term == 0 ? gpu.diffuse[i] : gpu.glossy[i]);
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_TRUE(std::isfinite(got[c])) << label << " pixel " << i;
+          const double tolerance = 2e-3 * std::abs(want[c]) + 1e-5 * largest[term];
+          const double error = std::abs(got[c] - want[c]);
+          worst[term] = std::max(worst[term], error / tolerance);
+          if (error <= tolerance) continue;
+          pixelFailed = true;
+          if (!steps && failures++ < 5)
+            ADD_FAILURE() << label << ": " << (term ? "glossy" : "diffuse") << " pixel " << i
+                          << " channel " << c << ": gpu " << got[c] << " cpu " << want[c];
+        }
+      }
+      failedPixels += pixelFailed;
+    }
+    std::printf("%s: worst error / tolerance: diffuse %.3f, glossy %.3f; %zu pixels over\n",
+                label.c_str(), worst[0], worst[1], failedPixels);
+    if (steps) {
+      EXPECT_LE(failedPixels, cpu.size() / 100) << label;
+    }
+  }
+
+  // The far-field limit: against a point light of radiant intensity `intensity(-l)` (towards
+  // the receiver) at `position`, per pixel facing it by more than `minCosine`, diffuse and
+  // glossy to 1e-3 relative (a glossy value below 1e-6 of the diffuse one is left out). More
+  // than a quarter of the pixels must be compared.
+  template <typename Intensity>
+  void expectPointLight(const Shaded& gpu, glm::vec3 position, double minCosine,
+                        const Intensity& intensity, const char* label) const {
+    size_t compared = 0;
+    double worst = 0.0;
+    for (uint32_t y = 0; y < kHeight; ++y)
+      for (uint32_t x = 0; x < kWidth; ++x) {
+        if (decoded_.at(x, y).background()) continue;
+        const gi::ShadeReceiver r = receiver(x, y);
+        const glm::dvec3 toLight = glm::dvec3(position) - r.position;
+        const double d2 = glm::dot(toLight, toLight);
+        const glm::dvec3 l = toLight / std::sqrt(d2);
+        const double nl = glm::dot(r.normal, l);
+        if (nl <= minCosine) continue;
+        const glm::dvec3 irradiance = intensity(-l) * nl / d2;
+        const glm::dvec3 diffuse = r.albedo / 3.141592653589793 * irradiance;
+        const glm::dvec3 glossy =
+            engine::ggxSpecular(r.normal, r.view, l, r.f0, r.f90, r.roughness) * irradiance;
+        const size_t i = size_t{y} * kWidth + x;
+        for (int c = 0; c < 3; ++c) {
+          const double ed = std::abs(gpu.diffuse[i][c] - diffuse[c]) / diffuse[c];
+          worst = std::max(worst, ed);
+          EXPECT_LE(ed, 1e-3) << label << ": diffuse pixel " << x << "," << y;
+          if (glossy[c] > 1e-6 * diffuse[c]) {
+            const double eg = std::abs(gpu.glossy[i][c] - glossy[c]) / glossy[c];
+            worst = std::max(worst, eg);
+            EXPECT_LE(eg, 1e-3) << label << ": glossy pixel " << x << "," << y;
+          }
+        }
+        ++compared;
+      }
+    std::printf("%s: %zu pixels, worst relative error %.2e\n", label, compared, worst);
+    EXPECT_GT(compared, size_t{kWidth * kHeight / 4});
   }
 
   engine::Scene scene_;
@@ -168,7 +254,6 @@ TEST_F(VsglShadeTest, MatchesReference) {
     const Shaded gpu = shade(vsgls, flags, &atlas);
     std::vector<gi::IndirectRadiance> cpu(size_t{kWidth} * kHeight);
     size_t occluded = 0, pairs = 0;
-    double largest[2] = {0.0, 0.0};
     for (uint32_t y = 0; y < kHeight; ++y)
       for (uint32_t x = 0; x < kWidth; ++x) {
         if (decoded_.at(x, y).background()) continue;
@@ -185,43 +270,12 @@ TEST_F(VsglShadeTest, MatchesReference) {
             return v;
           };
         r = gi::shadeReference(at, vsgls, glossy, planar, visibility);
-        largest[0] = std::max({largest[0], r.diffuse.r, r.diffuse.g, r.diffuse.b});
-        largest[1] = std::max({largest[1], r.glossy.r, r.glossy.g, r.glossy.b});
       }
-    ASSERT_GT(largest[0], 0.0);
-    if (glossy) {
-      ASSERT_GT(largest[1], 0.0);
-    }
     if (visible) {
       std::printf("ISM: %zu of %zu pixel-VSGL pairs (partly) occluded\n", occluded, pairs);
       ASSERT_GT(occluded, pairs / 10) << "the visibility variant must test occlusion";
     }
-    double worst[2] = {0.0, 0.0};
-    size_t failures = 0, failedPixels = 0;
-    for (size_t i = 0; i < cpu.size(); ++i) {
-      bool pixelFailed = false;
-      for (int term = 0; term < 2; ++term) {
-        const glm::dvec3 want = term == 0 ? cpu[i].diffuse : cpu[i].glossy;
-        const glm::dvec3 got(term == 0 ? gpu.diffuse[i] : gpu.glossy[i]);
-        for (int c = 0; c < 3; ++c) {
-          ASSERT_TRUE(std::isfinite(got[c])) << "pixel " << i;
-          const double tolerance = 2e-3 * std::abs(want[c]) + 1e-5 * largest[term];
-          const double error = std::abs(got[c] - want[c]);
-          worst[term] = std::max(worst[term], error / tolerance);
-          if (error <= tolerance) continue;
-          pixelFailed = true;
-          if (!visible && failures++ < 5)
-            ADD_FAILURE() << (term ? "glossy" : "diffuse") << " pixel " << i << " channel " << c
-                          << ": gpu " << got[c] << " cpu " << want[c];
-        }
-      }
-      failedPixels += pixelFailed;
-    }
-    std::printf("flags %u: worst error / tolerance: diffuse %.3f, glossy %.3f; %zu pixels over\n",
-                flags, worst[0], worst[1], failedPixels);
-    if (visible) {
-      EXPECT_LE(failedPixels, cpu.size() / 100);
-    }
+    expectMatches(gpu, cpu, visible, glossy, "flags " + std::to_string(flags));
     if (!glossy) {
       for (const glm::vec4& g : gpu.glossy) EXPECT_EQ(glm::vec3(g), glm::vec3(0.0f));
     }
@@ -290,40 +344,104 @@ TEST_F(VsglShadeTest, FarTinyVarianceIsPointLight) {
   v.diffuse = vsglLobe(mean, 1e-12f, axis, sharpness, power);
   v.specular = vsglLobe(mean, 1e-12f, axis, sharpness, glm::vec3(0.0f));
   const Shaded gpu = shade({v}, VSGL_SHADE_GLOSSY);  // no visibility: the lobe is outside the box
+  expectPointLight(
+      gpu, mean, 0.2,
+      [&](glm::dvec3 toward) {
+        return glm::dvec3(power) * gi::sgEvaluate(toward, glm::dvec3(axis), sharpness) /
+               gi::sgIntegral(sharpness);
+      },
+      "point-light limit");
+}
 
-  size_t compared = 0;
-  double worst = 0.0;
-  for (uint32_t y = 0; y < kHeight; ++y)
-    for (uint32_t x = 0; x < kWidth; ++x) {
-      if (decoded_.at(x, y).background()) continue;
-      const gi::ShadeReceiver r = receiver(x, y);
-      const glm::dvec3 toLight = glm::dvec3(mean) - r.position;
-      const double d2 = glm::dot(toLight, toLight);
-      const glm::dvec3 l = toLight / std::sqrt(d2);
-      const double nl = glm::dot(r.normal, l);
-      if (nl <= 0.2) continue;
-      const glm::dvec3 intensity = glm::dvec3(power) *
-                                   gi::sgEvaluate(-l, glm::dvec3(axis), sharpness) /
-                                   gi::sgIntegral(sharpness);
-      const glm::dvec3 irradiance = intensity * nl / d2;
-      const glm::dvec3 diffuse = r.albedo / 3.141592653589793 * irradiance;
-      const glm::dvec3 glossy =
-          engine::ggxSpecular(r.normal, r.view, l, r.f0, r.f90, r.roughness) * irradiance;
-      const size_t i = size_t{y} * kWidth + x;
-      for (int c = 0; c < 3; ++c) {
-        const double ed = std::abs(gpu.diffuse[i][c] - diffuse[c]) / diffuse[c];
-        worst = std::max(worst, ed);
-        EXPECT_LE(ed, 1e-3) << "diffuse pixel " << x << "," << y;
-        if (glossy[c] > 1e-6 * diffuse[c]) {
-          const double eg = std::abs(gpu.glossy[i][c] - glossy[c]) / glossy[c];
-          worst = std::max(worst, eg);
-          EXPECT_LE(eg, 1e-3) << "glossy pixel " << x << "," << y;
-        }
+// VPLs as the point rule makes them (VSGL_RULE_POINT: one texel, both lobes at the same point
+// with the disc's variance a / (4 pi)) inside the Cornell box, with the hard cases of the VPL
+// shading: a VPL at the receiver (d = 0), one without diffuse power (no normal: the SG emitter),
+// one without a disc (a = 0: the bare 1 / d^2), a near-mirror lobe (lambda = 1e4) and a rough one.
+std::vector<gpu::Vsgl> hardCaseVpls(const engine::Scene& scene, const gi::ShadeReceiver& at) {
+  const engine::Bounds b = scene.bounds();
+  const glm::vec3 centre = 0.5f * (b.min + b.max), extent = b.max - b.min;
+  std::vector<gpu::Vsgl> vpls;
+  auto add = [&](glm::vec3 position, glm::vec3 normal, float area, glm::vec3 diffuse,
+                 glm::vec3 specularAxis, float sharpness, glm::vec3 specular) {
+    gpu::Vsgl v{};
+    const float variance = area / (4.0f * 3.14159265f);
+    v.diffuse = vsglLobe(position, variance, normal, float(VSGL_FLAT_SHARPNESS), diffuse);
+    v.specular = vsglLobe(position, variance, specularAxis, sharpness, specular);
+    vpls.push_back(v);
+  };
+  for (int i = 0; i < 12; ++i) {
+    const float t = float(i) / 12.0f, fi = float(i);
+    const glm::vec3 position =
+        centre + extent * glm::vec3(0.4f * std::cos(6.28f * t), 0.35f * (t - 0.5f),
+                                    0.4f * std::sin(6.28f * t));
+    const glm::vec3 normal(std::sin(2.4f * fi), std::cos(1.7f * fi), std::sin(0.9f * fi + 1.0f));
+    add(position, normal, 1e-4f * std::pow(10.0f, float(i % 3)), glm::vec3(1.0f, 0.7f, 0.4f),
+        normal + glm::vec3(0.3f, -0.2f, 0.1f), std::pow(10.0f, float(i % 5)),
+        glm::vec3(0.3f, 0.5f, 1.0f));
+  }
+  add(glm::vec3(at.position), glm::vec3(at.normal), 1e-3f, glm::vec3(1.0f), glm::vec3(at.normal),
+      10.0f, glm::vec3(0.5f));
+  gpu::Vsgl dark{};  // no diffuse power: the record keeps no normal
+  dark.diffuse = vsglLobe(centre, 0.0f, {0, 0, 1}, 0.0f, glm::vec3(0.0f));
+  dark.diffuse.meanVariance = glm::vec4(0.0f);
+  dark.specular =
+      vsglLobe(centre + glm::vec3(0.0f, 0.3f, 0.0f), 1e-3f, {0, -1, 0.2f}, 30.0f, glm::vec3(2.0f));
+  vpls.push_back(dark);
+  add(centre - glm::vec3(0.2f), {0, 1, 0}, 0.0f, glm::vec3(0.5f), {0, 1, 0}, 2.0f, glm::vec3(0.2f));
+  return vpls;
+}
+
+// vpl_shade.comp against its double twin, as MatchesReference with the same tolerances and the
+// same reasons (fp32 positions, ISM steps on 1 % of the pixels), for each variant it reads.
+TEST_F(VsglShadeTest, VplShadingMatchesReference) {
+  const uint32_t cx = kWidth / 2, cy = kHeight / 2;
+  ASSERT_FALSE(decoded_.at(cx, cy).background());
+  const std::vector<gpu::Vsgl> vpls = hardCaseVpls(scene_, receiver(cx, cy));
+  for (uint32_t flags : {VSGL_SHADE_GLOSSY, 0u, VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY,
+                         VSGL_SHADE_GLOSSY | VSGL_SHADE_DIFFUSE_LOBES | VSGL_SHADE_SKIP_SKY}) {
+    const bool glossy = flags & VSGL_SHADE_GLOSSY, visible = flags & VSGL_SHADE_VISIBILITY;
+    const bool diffuseOnly = flags & VSGL_SHADE_DIFFUSE_LOBES;
+    std::vector<double> atlas;
+    const Shaded gpu = shade(vpls, flags, &atlas, 0.0f, nullptr, true);
+    std::vector<gi::IndirectRadiance> cpu(size_t{kWidth} * kHeight);
+    for (uint32_t y = 0; y < kHeight; ++y)
+      for (uint32_t x = 0; x < kWidth; ++x) {
+        if (decoded_.at(x, y).background()) continue;
+        const gi::ShadeReceiver at = receiver(x, y);
+        gi::VsglVisibility visibility;
+        if (visible)
+          visibility = [&](uint32_t k) {
+            return gi::ismVisibilityReference(atlas, params_,
+                                              gi::ismFrameReference(vpls[k], params_.centreOffset),
+                                              k, at.position, at.normal);
+          };
+        gi::IndirectRadiance& r = cpu[size_t{y} * kWidth + x];
+        r = gi::shadeVplsReference(at, vpls, glossy, diffuseOnly, visibility);
       }
-      ++compared;
-    }
-  std::printf("point-light limit: %zu pixels, worst relative error %.2e\n", compared, worst);
-  EXPECT_GT(compared, size_t{kWidth * kHeight / 4});
+    expectMatches(gpu, cpu, visible, glossy, "VPL flags " + std::to_string(flags));
+  }
+}
+
+// Far from every receiver a VPL is a point light with the Lambert emission of its surface: the
+// disc's terms vanish (a / d^2 ~ 1e-8 here, below the 1e-3 tolerance of fp32 shading).
+TEST_F(VsglShadeTest, FarVplIsLambertianPointLight) {
+  const engine::Bounds b = scene_.bounds();
+  const glm::vec3 centre = 0.5f * (b.min + b.max);
+  const glm::vec3 position = centre + glm::vec3(0.0f, 10.0f, 59.0f);
+  const glm::vec3 normal = glm::normalize(centre - position + glm::vec3(3.0f, 0.0f, 0.0f));
+  const glm::vec3 power(3.0e3f, 2.0e3f, 1.0e3f);
+  gpu::Vsgl v{};
+  v.diffuse =
+      vsglLobe(position, 1e-3f / (4.0f * 3.14159265f), normal, float(VSGL_FLAT_SHARPNESS), power);
+  v.specular = vsglLobe(position, v.diffuse.meanVariance.w, normal, 10.0f, glm::vec3(0.0f));
+  const Shaded gpu = shade({v}, VSGL_SHADE_GLOSSY, nullptr, 0.0f, nullptr, true);
+  expectPointLight(
+      gpu, position, 0.0,
+      [&](glm::dvec3 toward) {
+        return glm::dvec3(power) * std::max(glm::dot(glm::dvec3(normal), toward), 0.0) /
+               3.141592653589793;
+      },
+      "VPL point-light limit");
 }
 
 // vsgl-math.md section 12, case 14: NaN and Inf in a host's material channels (a broken texture)

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "lcg.h"
@@ -386,6 +387,74 @@ TEST(FisModified, TwelveStepsAreWithinAThousandthOfALevelOfTwenty) {
     }
   }
   std::printf("largest |l(12 steps) - l(20 steps)| = %.2e levels\n", worst);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The VPL baseline's point rule (VSGL_RULE_POINT)
+
+TEST(VplPoint, TexelPatchAreaFollowsTheLightsGeometry) {
+  // A parallel beam of texel area A on a surface tilted 60 degrees: A / cos = 2 A. A spot's
+  // on-axis texel at distance 3 on a facing plane: A t^2 = 9 A; 45 degrees off the axis on
+  // the plane z = -3 facing the light: distance 3 sqrt 2, cos^3 = 2^-1.5, the surface's own
+  // cosine 2^-0.5, so A 18 2^-1.5 / 2^-0.5 = 9 A. No normal: the patch faces the light (there
+  // 9 A / sqrt 2).
+  const double a = 1e-3;
+  TexelPatch beam{glm::dvec3(0.0, 0.0, -1.0), a, false};
+  const glm::dvec3 tilted(std::sin(std::numbers::pi / 3.0), 0.0, std::cos(std::numbers::pi / 3.0));
+  EXPECT_NEAR(texelPatchArea(beam, glm::dvec3(1.0, 2.0, -5.0), tilted), 2.0 * a, 1e-15);
+  EXPECT_NEAR(texelPatchArea(beam, glm::dvec3(1.0, 2.0, -5.0), glm::dvec3(0.0)), a, 1e-15);
+  TexelPatch spot{glm::dvec3(0.0, 0.0, -1.0), a, true};
+  const glm::dvec3 facing(0.0, 0.0, 1.0);
+  EXPECT_NEAR(texelPatchArea(spot, glm::dvec3(0.0, 0.0, -3.0), facing), 9.0 * a, 1e-14);
+  EXPECT_NEAR(texelPatchArea(spot, glm::dvec3(3.0, 0.0, -3.0), facing), 9.0 * a, 1e-14);
+  EXPECT_NEAR(texelPatchArea(spot, glm::dvec3(3.0, 0.0, -3.0), glm::dvec3(0.0)),
+              9.0 / std::sqrt(2.0) * a, 1e-14);
+}
+
+TEST(VplPoint, EachVplIsItsTexelOverNpWithTheDiscItStandsFor) {
+  // Every VPL reads the texel its lattice point warps to, at its centre and level 0: power
+  // = the texel's over N p, mean = the texel's position; both variances a / (4 pi) with a the
+  // texel's patch times max(1, M / (N p)) (kFloatRounding: the fp32 record).
+  const uint32_t size = 16, n = 64;
+  const ScalarPyramid pdf = makeScalarPyramid(wavyPdf(size), size);
+  std::array<VectorPyramid, VSGL_ATTR_COUNT> attributes;
+  std::vector<glm::dvec3> positions(size_t{size} * size);
+  for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
+    std::vector<glm::dvec4> texels(positions.size());
+    for (size_t t = 0; t < texels.size(); ++t) {
+      const double w = 0.5 + double(t % 7) / 7.0;  // the texel's weight (power.a)
+      positions[t] = glm::dvec3(double(t % size) * 0.1, double(t / size) * 0.1, -2.0);
+      const glm::dvec3 normal(0.0, 0.0, 1.0);
+      texels[t] = a == VSGL_ATTR_DIFFUSE_POWER || a == VSGL_ATTR_SPECULAR_POWER
+                      ? glm::dvec4(w, 0.5 * w, 0.25 * w, w)
+                  : a == VSGL_ATTR_DIFFUSE_POSITION || a == VSGL_ATTR_SPECULAR_POSITION
+                      ? glm::dvec4(w * positions[t], w * glm::dot(positions[t], positions[t]))
+                      : glm::dvec4(w * VSGL_DIFFUSE_LOBE_LENGTH * normal, 0.0);
+    }
+    attributes[a] = makeVectorPyramid(texels, size);
+  }
+  const TexelPatch patch{glm::dvec3(0.0, 0.0, -1.0), 1e-4, true};
+  const glm::dvec3 origin(0.5, -0.5, 1.0);
+  const std::vector<gpu::Vsgl> vpls =
+      generateVsglsReference(attributes, pdf, origin, n, 1.0, VSGL_RULE_POINT, patch);
+  const double top = pdf.levels.back()[0];
+  for (uint32_t i = 0; i < n; ++i) {
+    const WarpResult w = warpHierarchical(pdf, fibonacciPoint(i, n));
+    const size_t t = size_t{w.texel.y} * size + w.texel.x;
+    const double texelWeight = 0.5 + double(t % 7) / 7.0;
+    const double scale = double(size) * size / (n * pdf.at(0, w.texel.x, w.texel.y) / top);
+    const gpu::Vsgl& v = vpls[i];
+    EXPECT_EQ(v.kernel.z, 0.0f);
+    EXPECT_EQ(glm::dvec2(v.kernel), (glm::dvec2(w.texel) + 0.5) / double(size));
+    EXPECT_NEAR(v.diffuse.power.r, scale * texelWeight, kFloatRounding * scale * texelWeight);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(v.diffuse.meanVariance[c], origin[c] + positions[t][c], 1e-6);
+    const double area =
+        texelPatchArea(patch, positions[t], glm::dvec3(0.0, 0.0, 1.0)) * std::max(1.0, scale);
+    const double variance = area / (4.0 * std::numbers::pi);
+    EXPECT_NEAR(v.diffuse.meanVariance.w, variance, 1e-5 * variance) << "VPL " << i;
+    EXPECT_EQ(v.specular.meanVariance.w, v.diffuse.meanVariance.w);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -23,6 +23,10 @@ enum class VsglMethod : uint32_t {
   // of VPL positions in 3-D world space (vsgl-math.md section 9, docs/techniques/kmeans.md).
   KmeansImage = 1,
   KmeansWorld = 2,
+  // The instant-radiosity baseline (docs/techniques/vpl-baseline.md): N VPLs, one RSM texel
+  // each, drawn from the same PDF and lattice, shaded as point lights with the receiver's exact
+  // BRDF and the same ISMs. K, the rule, adaptive shading and culling do not apply.
+  Vpl = 3,
 };
 
 struct KmeansSettings {
@@ -200,8 +204,10 @@ struct Settings {
   float kernelScale = 1.0f;
   KernelRule rule = KernelRule::Modified;
   PdfKind pdf = PdfKind::Brsm;
-  // FilteredImportanceSampling, or a k-means baseline for comparison (its resources are created
-  // with its first frame: keys, values and sort scratch of 16 bytes per RSM texel).
+  // FilteredImportanceSampling, or a baseline for comparison: k-means (its resources are created
+  // with its first frame: keys, values and sort scratch of 16 bytes per RSM texel) or VPLs (no
+  // resources of its own; shading costs about as much per pixel-VPL pair as per pixel-VSGL pair,
+  // measured in docs/benchmarks.md).
   VsglMethod method = VsglMethod::FilteredImportanceSampling;
   KmeansSettings kmeans;
   BrsmSettings brsm;

@@ -32,10 +32,12 @@ void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, cons
   if (!(settings.kernelScale >= 1.0f))
     throw engine::Error("VSGL kernel scale K = " + std::to_string(settings.kernelScale) +
                         " must be >= 1");
-  if (settings.rule != VSGL_RULE_TOK15 && settings.rule != VSGL_RULE_MODIFIED)
+  if (settings.rule > VSGL_RULE_POINT)
     throw engine::Error("VSGL rule " + std::to_string(settings.rule) +
-                        " is neither Tok15 nor modified FIS");
-  engine::ProfileScope scope(profiler, cmd, passPrefix_ + "filtered sampling");
+                        " is none of Tok15, modified FIS and VPLs");
+  const bool point = settings.rule == VSGL_RULE_POINT;
+  engine::ProfileScope scope(profiler, cmd,
+                             passPrefix_ + (point ? "vpl sampling" : "filtered sampling"));
   const uint32_t size = attributes.pyramid(0).desc().width;
   gpu::VsglGeneratePush push{};
   push.origin = glm::vec4(view.origin, 0.0f);
@@ -44,6 +46,8 @@ void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, cons
   push.size = size;
   push.topLevel = static_cast<uint32_t>(std::countr_zero(size));
   push.kernelScale = settings.kernelScale;
+  push.texelPatch = glm::vec4(view.axis, view.texelArea);
+  push.perspective = view.perspective ? 1u : 0u;
   using engine::Binding;
   VkSampler s = sampler_.handle();
   program_.dispatch(

@@ -8,15 +8,18 @@
 namespace gi {
 
 struct VsglSettings {
-  uint32_t count = 1024;               // N, [1, maxCount] VSGLs; cost ~ N (generation and shading)
-  float kernelScale = 1.0f;            // K, [1, N]: kernels hold K/N of the PDF; larger = blurrier
-                                       // and temporally steadier (paper: 1)
-  uint32_t rule = VSGL_RULE_MODIFIED;  // VSGL_RULE_TOK15 or VSGL_RULE_MODIFIED (+~0 cost)
+  uint32_t count = 1024;     // N, [1, maxCount] VSGLs; cost ~ N (generation and shading)
+  float kernelScale = 1.0f;  // K, [1, N]: kernels hold K/N of the PDF; larger = blurrier
+                             // and temporally steadier (paper: 1)
+  // VSGL_RULE_TOK15, VSGL_RULE_MODIFIED (+~0 cost) or VSGL_RULE_POINT (the VPL baseline's
+  // point lights; K is not read)
+  uint32_t rule = VSGL_RULE_MODIFIED;
 };
 
 class VsglGenerator {
  public:
-  // `passPrefix` is put before the profiler's pass name, "filtered sampling".
+  // `passPrefix` is put before the profiler's pass name, "filtered sampling" ("vpl sampling"
+  // for VSGL_RULE_POINT).
   VsglGenerator(engine::Context& ctx, uint32_t maxCount, std::string passPrefix = {});
 
   void record(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,

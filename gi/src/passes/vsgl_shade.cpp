@@ -7,6 +7,7 @@
 #include "shared/adaptive_shading.h"
 #include "shared/vsgl.h"
 #include "shared/vsgl_shade.h"
+#include "spirv/vpl_shade.h"
 #include "spirv/vsgl_shade.h"
 
 namespace gi {
@@ -48,10 +49,14 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
     throw engine::Error("VSGL shading: unknown flags " + std::to_string(in.flags));
   const bool queued = (in.flags & VSGL_SHADE_QUEUE) != 0;
   if (queued && !in.queue) throw engine::Error("VSGL shading: a queued variant without a queue");
-  std::optional<engine::ComputeProgram>& program = programs_[in.flags];
+  if (in.points && (in.flags & (VSGL_SHADE_QUEUE | VSGL_SHADE_CULL)))
+    throw engine::Error("VPL shading: neither adaptive queues nor culling apply to point lights");
+  std::optional<engine::ComputeProgram>& program = programs_[in.points][in.flags];
   if (!program) {
     const uint32_t specialization[] = {in.flags};
-    program.emplace(*ctx_, "vsgl_shade", kVsglShadeSpv,
+    const std::span<const uint32_t> spirv = in.points ? std::span<const uint32_t>(kVplShadeSpv)
+                                                      : std::span<const uint32_t>(kVsglShadeSpv);
+    program.emplace(*ctx_, in.points ? "vpl_shade" : "vsgl_shade", spirv,
                     std::vector<VkDescriptorType>{
                         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
@@ -62,7 +67,9 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
                     uint32_t(sizeof(gpu::VsglShadePush)), specialization);
   }
   engine::ProfileScope scope(profiler, cmd,
-                             queued ? "vsgl shading L" + std::to_string(in.level) : "vsgl shading");
+                             in.points ? "vpl shading"
+                             : queued  ? "vsgl shading L" + std::to_string(in.level)
+                                       : "vsgl shading");
   using engine::Binding;
   gpu::VsglShadePush push{};
   const engine::RelativeUnprojection unprojection = engine::relativeUnprojection(camera);

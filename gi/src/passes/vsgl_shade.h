@@ -1,5 +1,6 @@
 // VSGL shading: indirect diffuse and glossy radiance of every G-buffer pixel from the frame's
-// VSGLs (shaders/gi/vsgl_shade.comp, layout in shaders/shared/vsgl_shade.h).
+// VSGLs (shaders/gi/vsgl_shade.comp, layout in shaders/shared/vsgl_shade.h), or from the VPL
+// baseline's point lights (shaders/gi/vpl_shade.comp, the same bindings).
 #pragma once
 
 #include <array>
@@ -37,6 +38,10 @@ class VsglShade {
     const engine::Buffer* queue = nullptr;
     uint32_t level = 0;
     float cullBudget = 0.0f;  // VSGL_SHADE_CULL: tau (CullingSettings::budget)
+    // The records are the VPL baseline's point lights (VSGL_RULE_POINT), shaded by
+    // vpl_shade.comp, which reads VSGL_SHADE_GLOSSY, _VISIBILITY, _SKIP_SKY and _DIFFUSE_LOBES
+    // (no queue, no culling; its emitters are always planar).
+    bool points = false;
   };
 
   // `camera`: the G-buffer camera's view (positions are rebuilt relative to its eye,
@@ -53,7 +58,8 @@ class VsglShade {
 
  private:
   engine::Context* ctx_;
-  std::array<std::optional<engine::ComputeProgram>, VSGL_SHADE_VARIANTS> programs_;
+  // [points][flags], each compiled at its first record.
+  std::array<std::array<std::optional<engine::ComputeProgram>, VSGL_SHADE_VARIANTS>, 2> programs_;
   engine::Buffer albedoTable_;  // vec2[17 x 17], gi::ggxSpecularAlbedoNode (sg_lighting.glsl)
   engine::Buffer noQueue_;      // bound as the queue by the variants that do not read one
   engine::Buffer stats_;        // gpu::VsglShadeStats, written by VSGL_SHADE_CULL

@@ -257,22 +257,35 @@ gpu::VsglLobe buildVsglLobe(const LobeSums& sums, glm::dvec3 origin) {
   return lobe;
 }
 
+double texelPatchArea(const TexelPatch& patch, glm::dvec3 offset, glm::dvec3 normal) {
+  const glm::dvec3 w = patch.perspective ? glm::normalize(offset) : patch.axis;  // light -> y
+  const double cosine =
+      glm::dot(normal, normal) > 0.0 ? std::max(std::abs(glm::dot(normal, w)), 1e-6) : 1.0;
+  if (!patch.perspective) return patch.texelArea / cosine;
+  const double c = glm::dot(w, patch.axis);
+  return patch.texelArea * c * c * c * glm::dot(offset, offset) / cosine;
+}
+
 std::vector<gpu::Vsgl> generateVsglsReference(
     const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, const ScalarPyramid& pdf,
-    glm::dvec3 origin, uint32_t n, double k, uint32_t rule) {
+    glm::dvec3 origin, uint32_t n, double k, uint32_t rule, const TexelPatch& patch) {
   const double top = topMean(pdf);
   const uint32_t texelCount = pdf.size * pdf.size;
   std::vector<gpu::Vsgl> vsgls(n);
   for (uint32_t i = 0; i < n; ++i) {
-    const WarpResult warp = warpHierarchical(pdf, fibonacciPoint(i, n));
-    const bool modified = rule == VSGL_RULE_MODIFIED;
-    const double level =
-        modified ? modifiedFisLevel(pdf, warp.x, n, k) : tok15Level(warp.density, n, k, pdf.size);
+    WarpResult warp = warpHierarchical(pdf, fibonacciPoint(i, n));
+    const bool modified = rule == VSGL_RULE_MODIFIED, point = rule == VSGL_RULE_POINT;
+    // A VPL reads its texel alone: level 0 at the texel's centre.
+    if (point) warp.x = (glm::dvec2(warp.texel) + 0.5) / double(pdf.size);
+    const double level = point      ? 0.0
+                         : modified ? modifiedFisLevel(pdf, warp.x, n, k)
+                                    : tok15Level(warp.density, n, k, pdf.size);
     const double filtered = top > 0.0 ? sampleTrilinear(pdf, warp.x, level) / top : 0.0;
-    // An all-zero PDF has no mass to share: zero power rather than [T15]'s M F~ / 1.
-    const double scale = !(top > 0.0) ? 0.0
-                         : modified   ? modifiedFisScale(filtered, n, texelCount)
-                                      : tok15Scale(warp.density, n, texelCount);
+    // An all-zero PDF has no mass to share: zero power rather than [T15]'s M F~ / 1. A VPL is
+    // its texel's value over N p, the importance-sampling estimator, as modified FIS at l = 0.
+    const double scale = !(top > 0.0)        ? 0.0
+                         : modified || point ? modifiedFisScale(filtered, n, texelCount)
+                                             : tok15Scale(warp.density, n, texelCount);
     // Numerators and denominators of every ratio come from the same kernel (section 3.5).
     auto sums = [&](int power, int position, int axis) {
       return LobeSums{scale * sampleTrilinear(attributes[power], warp.x, level),
@@ -285,6 +298,16 @@ std::vector<gpu::Vsgl> generateVsglsReference(
     vsgl.specular = buildVsglLobe(
         sums(VSGL_ATTR_SPECULAR_POWER, VSGL_ATTR_SPECULAR_POSITION, VSGL_ATTR_SPECULAR_AXIS),
         origin);
+    if (point && vsgl.diffuse.power.a + vsgl.specular.power.a > 0.0f) {
+      // Never less than the texel itself: as N grows the VPL becomes its texel.
+      const bool hasNormal = vsgl.diffuse.power.a > 0.0f;
+      const glm::dvec3 mean(hasNormal ? vsgl.diffuse.meanVariance : vsgl.specular.meanVariance);
+      const glm::dvec3 normal =
+          hasNormal ? glm::dvec3(vsgl.diffuse.axisSharpness) : glm::dvec3(0.0);
+      const double area = texelPatchArea(patch, mean - origin, normal) * std::max(1.0, scale);
+      vsgl.diffuse.meanVariance.w = vsgl.specular.meanVariance.w =
+          float(area / (4.0 * std::numbers::pi));
+    }
     vsgl.kernel = glm::vec4(glm::dvec4(warp.x, level, filtered));
   }
   return vsgls;

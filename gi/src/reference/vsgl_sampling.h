@@ -128,13 +128,28 @@ struct LobeSums {
 // gives zero power, zero variance, sharpness 0, axis (0, 0, 1) and mean = origin.
 gpu::VsglLobe buildVsglLobe(const LobeSums& sums, glm::dvec3 origin);
 
+// The RSM's texel geometry (RsmView's axis, texelArea and perspective), for VSGL_RULE_POINT.
+struct TexelPatch {
+  glm::dvec3 axis{0.0, 0.0, -1.0};  // unit direction the light travels
+  double texelArea = 0.0;           // spot: on the unit-distance plane; directional: m^2
+  bool perspective = true;
+};
+
+// The area of the surface patch that one texel covers at offset y from the RSM origin, unit
+// normal n: its solid angle from the light (texelArea cos^3 on the unit-distance plane) times
+// t^2 / cos at the surface, or a parallel beam's texelArea / cos; cos floored at 1e-6. n = 0
+// (no normal known): the patch faces the light.
+double texelPatchArea(const TexelPatch& patch, glm::dvec3 offset, glm::dvec3 normal);
+
 // The whole generation pass: for i < n, warp the lattice point, pick the level by `rule`
 // (VSGL_RULE_TOK15 or VSGL_RULE_MODIFIED), read the six attribute pyramids (indexed by
 // VSGL_ATTR_*) with the same trilinear kernel, scale means to cluster sums with that rule's
 // estimator, and build both lobes. kernel = (x, l, p~(x, l)). An all-zero PDF gives n
-// zero-power VSGLs.
+// zero-power VSGLs. VSGL_RULE_POINT (the VPL baseline, docs/techniques/vpl-baseline.md): the
+// warped texel alone, at its centre and level 0, over N p; both lobes' variance a / (4 pi), the
+// disc of area a = texelPatchArea x max(1, M / (N p)) that the VPL stands for.
 std::vector<gpu::Vsgl> generateVsglsReference(
     const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, const ScalarPyramid& pdf,
-    glm::dvec3 origin, uint32_t n, double k, uint32_t rule);
+    glm::dvec3 origin, uint32_t n, double k, uint32_t rule, const TexelPatch& patch = {});
 
 }  // namespace gi
