@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -15,6 +16,7 @@
 #include "engine/error.h"
 #include "engine/gbuffer_reference.h"
 #include "engine/orthonormal_basis.h"
+#include "mirror_planes.h"
 #include "pixel_parallel.h"
 #include "reference/rsm_reference.h"
 #include "shading_point.h"
@@ -152,6 +154,10 @@ struct PixelState {
   ShadingPoint x{};
   glm::dvec3 view{0.0};
   Lobes lobes{engine::GBufferSample{}, glm::dvec3(0.0, 0.0, 1.0)};  // set with x in pass 1
+  // Strategy (c): the mirror planes whose reflection of the light x can see, each picked with
+  // probability pMirror / their count, in place of (a)'s direction.
+  std::vector<MirrorLobe> mirrors;
+  double pMirror = 0.0;
   glm::dvec3 direct{0.0};
   glm::dvec3 diffuseSum{0.0};
   glm::dvec3 glossySum{0.0};
@@ -213,22 +219,41 @@ struct LightSampler {
   }
 };
 
-// The one-bounce estimator at a pixel's visible point x, two strategies for the bounce point
-// y combined by the balance heuristic (Veach 1997, section 9.2): (a) a direction from x's BRDF
+// The one-bounce estimator at a pixel's visible point x, its strategies for the bounce point y
+// combined by the balance heuristic (Veach 1997, section 9.2): (a) a direction from x's BRDF
 // sampling, y the first hit, the light at y by a shadow ray; (b) a ray from the light, y its
-// first hit, connected to x by a visibility ray. (a) handles y close to x (corners), where
-// (b)'s 1/d^2 explodes; (b) finds a small lit area that (a) rarely hits.
+// first hit, connected to x by a visibility ray; (c) y near a mirror plane's reflection of the
+// light (MirrorLobe), reached by a ray from x like (a). (a) handles y close to x (corners), where
+// (b)'s 1/d^2 explodes; (b) finds a small lit area that (a) rarely hits; (c) the caustic of a
+// near-mirror y, which both miss. (a) and (c) are one sample of their mixture, so a sample traces
+// no more rays than with (a) alone.
 class Tracer {
  public:
   Tracer(const engine::Scene& scene, const EmbreeScene& rays, const gpu::GpuLight& bouncing,
          const engine::Light& light)
-      : scene_(scene), rays_(rays), bouncing_(bouncing), lightSampler_(light, scene.bounds()) {}
+      : scene_(scene),
+        rays_(rays),
+        bouncing_(bouncing),
+        lightSampler_(light, scene.bounds()),
+        mirrorLight_(mirrorLight(light)),
+        mirrorPlanes_(findMirrorPlanes(scene)),
+        minHeight_(1e-6 * glm::length(glm::dvec3(scene.bounds().max - scene.bounds().min))) {}
+
+  // Strategy (c)'s lobes at x (mirrorLobe says which planes qualify); none when `mirrors` is off.
+  void setMirrors(PixelState& px, bool mirrors) const {
+    px.mirrors.clear();
+    for (size_t k = 0; mirrors && k < mirrorPlanes_.planes.size(); ++k)
+      if (const std::optional<MirrorLobe> lobe = mirrorLobe(
+              mirrorPlanes_, static_cast<int32_t>(k), px.x.position, mirrorLight_, minHeight_))
+        px.mirrors.push_back(*lobe);
+    px.pMirror = px.mirrors.empty() ? 0.0 : kMirrorShare;
+  }
 
   void sample(PixelState& px) const {
     const Lobes& lobes = px.lobes;
     Pcg32& rng = px.rng;
     const double u[5] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-    Contribution c = brdfStrategy(px, lobes, u[0], u[1], u[2]);
+    Contribution c = receiverStrategy(px, lobes, u[0], u[1], u[2]);
     const Contribution b = lightStrategy(px, lobes, u[3], u[4]);
     c.diffuse += b.diffuse;
     c.glossy += b.glossy;
@@ -241,6 +266,10 @@ class Tracer {
   }
 
  private:
+  // The share of strategy (c) in the mixture with (a) where x has mirror lobes (on the checker
+  // at 160x90 the samples per pixel varied by 10 % between shares of 0.3 and 0.7).
+  static constexpr double kMirrorShare = 0.5;
+
   struct Contribution {
     glm::dvec3 diffuse{0.0};
     glm::dvec3 glossy{0.0};
@@ -258,8 +287,36 @@ class Tracer {
     return c;
   }
 
-  Contribution brdfStrategy(const PixelState& px, const Lobes& lobes, double u0, double u1,
-                            double u2) const {
+  // The density per m^2 with which the mixture of (a) and (c) reaches y on `triangle` along the
+  // world direction `dir` from x; `geometry` = |cos_y| / d^2 turns (a)'s solid angle into area.
+  static double receiverAreaPdf(const PixelState& px, const Lobes& lobes, glm::dvec3 dir,
+                                uint32_t triangle, glm::dvec3 y, double geometry,
+                                const MirrorPlanes& planes) {
+    double area = (1.0 - px.pMirror) * lobes.pdf(lobes.frame.toLocal(dir)) * geometry;
+    const int32_t plane = planes.ofTriangle[triangle];
+    if (plane < 0) return area;
+    for (const MirrorLobe& lobe : px.mirrors)
+      if (lobe.plane == plane)
+        area += px.pMirror / static_cast<double>(px.mirrors.size()) * lobe.pdf(y);
+    return area;
+  }
+
+  // A direction from x's mixture of (a) and (c), in world space, and the plane (c) aimed at (-1
+  // for (a)).
+  struct ReceiverSample {
+    glm::dvec3 dir;
+    int32_t plane;
+  };
+  ReceiverSample receiverDirection(const PixelState& px, const Lobes& lobes, double u0, double u1,
+                                   double u2) const {
+    if (u0 < px.pMirror) {
+      const size_t count = px.mirrors.size();
+      const size_t k =
+          std::min(count - 1, static_cast<size_t>(u0 / px.pMirror * static_cast<double>(count)));
+      const MirrorLobe& lobe = px.mirrors[k];
+      return {glm::normalize(lobe.sample(u1, u2) - px.x.position), lobe.plane};
+    }
+    u0 = (u0 - px.pMirror) / (1.0 - px.pMirror);
     glm::dvec3 l;
     if (u0 < lobes.pSpecular) {
       const glm::dvec3 h = sampleVisibleNormal(lobes.v, lobes.alpha, u1, u2);
@@ -268,19 +325,30 @@ class Tracer {
       const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
       l = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(1.0 - u1, 0.0)));
     }
-    const double pdf = lobes.pdf(l);
-    const glm::dvec3 dir = lobes.frame.toWorld(l);
-    // Directions into the receiver's own triangle would leak through it.
-    if (pdf <= 0.0 || glm::dot(px.x.geometricNormal, dir) <= 0.0) return {};
+    return {lobes.frame.toWorld(l), -1};
+  }
+
+  Contribution receiverStrategy(const PixelState& px, const Lobes& lobes, double u0, double u1,
+                                double u2) const {
+    const auto [dir, plane] = receiverDirection(px, lobes, u0, u1, u2);
+    // Directions below x's shading normal carry nothing to x; into its own triangle they would
+    // leak through it.
+    if (glm::dot(px.x.surface.normal, dir) <= 0.0 || glm::dot(px.x.geometricNormal, dir) <= 0.0)
+      return {};
     const RayHit hit = rays_.intersect(offsetOrigin(px.x.position, px.x.geometricNormal), dir);
-    if (!hit.hit) return {};
+    // (c) samples points of its plane: a ray that meets anything else first is no sample of it
+    // (receiverAreaPdf gives (c) no density there).
+    if (!hit.hit || (plane >= 0 && mirrorPlanes_.ofTriangle[hit.triangle] != plane)) return {};
     const ShadingPoint y = shadingPoint(scene_, hit, px.x.position, dir);
     const Reflected r = reflectLight(rays_, bouncing_, y, -dir);
     if (r.diffuse + r.glossy == glm::dvec3(0.0)) return {};
-    // Both strategies' densities of y per m^2 (x's solid angle times |cos_y| / d^2).
-    const double areaA = pdf * std::abs(glm::dot(y.geometricNormal, dir)) / (hit.t * hit.t);
+    // The two sides' densities of y per m^2.
+    const double geometry = std::abs(glm::dot(y.geometricNormal, dir)) / (hit.t * hit.t);
+    const double areaX =
+        receiverAreaPdf(px, lobes, dir, hit.triangle, y.position, geometry, mirrorPlanes_);
     const double areaB = lightSampler_.areaPdf(y.position, y.geometricNormal);
-    return atX(px, dir, r.diffuse + r.glossy, areaA / (areaA + areaB) / pdf);
+    if (areaX <= 0.0) return {};
+    return atX(px, dir, r.diffuse + r.glossy, geometry / (areaX + areaB));
   }
 
   Contribution lightStrategy(const PixelState& px, const Lobes& lobes, double u1, double u2) const {
@@ -311,15 +379,19 @@ class Tracer {
         nl * incidence.irradiance;
     const double areaB = lightSampler_.areaPdf(y.position, y.geometricNormal);
     const double geometry = std::abs(glm::dot(y.geometricNormal, w)) / d2;
-    const double areaA = lobes.pdf(lobes.frame.toLocal(-w)) * geometry;
+    const double areaX =
+        receiverAreaPdf(px, lobes, -w, hit.triangle, y.position, geometry, mirrorPlanes_);
     if (areaB <= 0.0) return {};
-    return atX(px, -w, radiance, geometry / (areaA + areaB));
+    return atX(px, -w, radiance, geometry / (areaX + areaB));
   }
 
   const engine::Scene& scene_;
   const EmbreeScene& rays_;
   const gpu::GpuLight& bouncing_;
   LightSampler lightSampler_;
+  MirrorLight mirrorLight_;
+  MirrorPlanes mirrorPlanes_;
+  double minHeight_;  // x closer than this to a mirror plane lies on it
 };
 
 double standardError(const PixelState& px) {
@@ -362,6 +434,7 @@ PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
     px.x = shadingPoint(scene, hit, ray.origin, ray.dir);
     px.view = -ray.dir;
     px.lobes = Lobes(px.x.surface, px.view);
+    tracer.setMirrors(px, settings.mirrorSampling);
     for (const gpu::GpuLight& light : lights) {
       const Reflected r = reflectLight(rays, light, px.x, px.view, settings.directShadows);
       px.direct += r.diffuse + r.glossy;
@@ -471,6 +544,7 @@ PathTraceImage cachedPathTrace(const ReferenceCache& cache, const engine::Scene&
   key.add(scene).add(view).add(bouncingLight);
   key.add(settings.relativeError).add(settings.floorFraction).add(settings.minSamples);
   key.add(settings.maxSamples).add(settings.seed).add(settings.directShadows);
+  key.add(settings.mirrorSampling);
   // Channels: direct, diffuse, glossy (3 each), standard error, samples.
   constexpr uint32_t kChannels = 11;
   if (std::optional<CachedImage> c = cache.load("pathtrace", key);

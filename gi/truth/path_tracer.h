@@ -7,11 +7,13 @@
 // Primary rays go through pixel centres as the G-buffer's do (one visible point per pixel, no
 // anti-aliasing), so images compare pixel by pixel with the GPU's.
 //
-// Estimator at x: directions from a one-sample mixture of cosine and GGX visible-normal
-// sampling (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"), weighted by the
-// mixture pdf (the balance heuristic of Veach 1997, section 9.2.2); the light at y is a point or
-// direction, evaluated exactly with a shadow ray. Each pixel has its own PCG32 stream seeded from
-// (seed, pixel), so the image does not depend on the thread count or scheduling.
+// Estimator at x: three strategies for the bounce point y, combined by the balance heuristic
+// (Veach 1997, section 9.2.2): (a) directions from a one-sample mixture of cosine and GGX
+// visible-normal sampling (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"), the
+// light at y (a point or direction) evaluated exactly with a shadow ray; (b) rays from the light;
+// (c) y around a near-mirror plane's reflection of the light (mirror_planes.h), in one mixture
+// with (a). Each pixel has its own PCG32 stream seeded from (seed, pixel), so the image does not
+// depend on the thread count or scheduling.
 #pragma once
 
 #include <cstdint>
@@ -40,6 +42,9 @@ struct PathTraceSettings {
   // Off: the direct light ignores occluders (to compare with a renderer's unshadowed mode; the
   // one-bounce light always traces its shadow rays).
   bool directShadows = true;
+  // Strategy (c), the bounce point sampled around near-mirror planes' reflections of the light
+  // (mirror_planes.h); off, (a) and (b) alone (tests compare the two).
+  bool mirrorSampling = true;
 };
 
 struct PathTraceImage {
