@@ -199,6 +199,23 @@ std::string planarTable(const json& targets) {
   return t;
 }
 
+// The VPL baseline against modified FIS at the same N: error, frame, cost per pair.
+std::string vplTable(const json& targets) {
+  std::string t =
+      "| scene | N | relMSE: modified / VPL | frame: modified / VPL | shading ns per pair: "
+      "VSGL (full rate) / VPL |\n"
+      "|---|---|---|---|---|\n";
+  for (const json& g : targets) {
+    if (!g.contains("vpl_relative_mse") || !g.contains("adaptive_relative_mse")) continue;
+    t += format("| %s | %u | %.4f / %.4f | %s / %s ms | %.0f / %.0f |\n",
+                g["scene"].get<std::string>().c_str(), g["count"].get<uint32_t>(),
+                g["adaptive_relative_mse"].get<double>(), g["vpl_relative_mse"].get<double>(),
+                ms(g["adaptive_frame_ms"]).c_str(), ms(g["vpl_frame_ms"]).c_str(),
+                g["shading_ns_per_pair"].get<double>(), g["vpl_shading_ns_per_pair"].get<double>());
+  }
+  return t;
+}
+
 }  // namespace
 
 std::string markdownTables(const json& machine, const json& targets, const json& fronts,
@@ -227,6 +244,7 @@ std::string markdownTables(const json& machine, const json& targets, const json&
   md += "\n### Adaptive shading (modified FIS, K = 1)\n\n" + adaptiveTable(targets);
   md += "\n### VSGL culling (modified FIS, K = 1)\n\n" + cullingTable(targets);
   md += "\n### Planar emitters (modified FIS at full rate, K = 1)\n\n" + planarTable(targets);
+  md += "\n### The VPL baseline (modified FIS, K = 1)\n\n" + vplTable(targets);
   return md;
 }
 

@@ -149,6 +149,13 @@ json targets(const json& machine, const json& rows) {
       t["planar_relative_mse"] = (*full)["error"]["relative_mse"];
       t["sg_emitter_relative_mse"] = (*sg)["error"]["relative_mse"];
     }
+    // The VPL baseline at the same N: its error, frame, and its cost per pixel-VPL pair (every
+    // pixel shaded) beside the VSGLs' at full rate.
+    if (const json* vpl = find(scene, "vpl", n); vpl && passMedian(*vpl, "frame") > 0.0) {
+      t["vpl_relative_mse"] = (*vpl)["error"]["relative_mse"];
+      t["vpl_frame_ms"] = passMedian(*vpl, "frame");
+      t["vpl_shading_ns_per_pair"] = passMedian(*vpl, "vpl shading") * 1e6 / (n * pixels);
+    }
     if (const json* tok15 = find(scene, "tok15", n); tok15 && generationMs(*tok15) > 0.0)
       t["modified_over_tok15_generation"] = modified / generationMs(*tok15);
     const json* best = nullptr;
