@@ -17,7 +17,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # A curve's name: the method and K, or the method alone where K does not apply.
-series_key='function series() { return ($2 ~ /^kmeans|^vpl-gather/) ? $2 : $2 " K=" ($4 + 0) }'
+series_key='function series() { return ($2 ~ /^kmeans|^vpl/) ? $2 : $2 " K=" ($4 + 0) }'
 
 # The gnuplot plot clause of relMSE (column 11) against time column $2 of scene $1: one curve per
 # method and K, "time relMSE count" per point, each point labelled with its VSGL count. $3 = 1
