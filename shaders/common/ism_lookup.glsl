@@ -53,10 +53,16 @@ IsmFrame ismFrameFromLobes(vec4 diffuseMeanVariance, vec3 diffuseAxis, float dif
   return f;
 }
 
+// The frame of a VSGL: its lobes' frame, centred on its visibility point when it has one
+// (Vsgl::visibilityPoint), lifted the same way.
 IsmFrame ismFrame(Vsgl vsgl, float centreOffset) {
-  return ismFrameFromLobes(vsgl.diffuse.meanVariance, vsgl.diffuse.axisSharpness.xyz,
-                           vsgl.diffuse.power.a, vsgl.specular.meanVariance,
-                           vsgl.specular.axisSharpness.xyz, vsgl.specular.power.a, centreOffset);
+  IsmFrame f = ismFrameFromLobes(vsgl.diffuse.meanVariance, vsgl.diffuse.axisSharpness.xyz,
+                                 vsgl.diffuse.power.a, vsgl.specular.meanVariance,
+                                 vsgl.specular.axisSharpness.xyz, vsgl.specular.power.a,
+                                 centreOffset);
+  if (f.lit && vsgl.visibilityPoint.w > 0.0)
+    f.centre = vsgl.visibilityPoint.xyz + centreOffset * f.axis;
+  return f;
 }
 
 // Paraboloid coordinates in [0, 1]^2 of the offset d = p - centre (|d| = dist > 0) whose

@@ -60,6 +60,7 @@ void main() {
                              partial[VSGL_ATTR_SPECULAR_POSITION][0],
                              partial[VSGL_ATTR_SPECULAR_AXIS][0], pc.origin.xyz);
   v.kernel = vec4(0.0, 0.0, -1.0, float(range.y - range.x));  // a cluster: no mip level
+  v.visibilityPoint = vec4(0.0);  // the ISM from the lobes' mean
   vsgls[k] = v;
   vec4 weighted = partial[VSGL_ATTR_COUNT][0];
   if (weighted.w > 0.0) centres[k] = vec4(weighted.xyz / weighted.w, 0.0);

@@ -123,5 +123,10 @@ void main() {
     v.diffuse.meanVariance.w = v.specular.meanVariance.w = area / 12.566370614359172;  // 4 pi
   }
   v.kernel = vec4(x, level, filtered);
+  // The map's centre: the surface under x at level 0, bilinear like the kernel's own fetch so that
+  // it moves continuously with x (docs/techniques/ism.md, "The map's centre").
+  float weight = bilinear(diffusePower, x, 0).a + bilinear(specularPower, x, 0).a;
+  vec3 sums = bilinear(diffusePosition, x, 0).xyz + bilinear(specularPosition, x, 0).xyz;
+  v.visibilityPoint = weight > 0.0 ? vec4(pc.origin.xyz + sums / weight, 1.0) : vec4(0.0);
   vsgls[i] = v;
 }

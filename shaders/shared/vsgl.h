@@ -41,11 +41,17 @@ struct Vsgl {
   // Filtered sampling: xy = kernel centre in [0, 1]^2 of the RSM, z = mip level l,
   // w = p~(x, l) (mean 1). A k-means cluster (shared/kmeans.h): (0, 0, -1, member texels).
   vec4 kernel;
+  // Where the VSGL's imperfect shadow map is rendered from (docs/techniques/ism.md, "The map's
+  // centre"): xyz = the lit surface under the kernel's centre (world; the power-weighted mean of
+  // the level-0 positions bilinearly around it), w = 1. w = 0 (k-means clusters): the
+  // power-weighted mean of the two lobes, which for a kernel spanning two surfaces lies on
+  // neither.
+  vec4 visibilityPoint;
 };
 
 SHARED_END
 
 SHARED_ASSERT_SIZE(VsglLobe, 48);
-SHARED_ASSERT_SIZE(Vsgl, 112);
+SHARED_ASSERT_SIZE(Vsgl, 128);
 SHARED_ASSERT_OFFSET(Vsgl, kernel, 96);
 #endif

@@ -168,6 +168,12 @@ TEST_F(VsglAttributesTest, GeneratedVsglsMatchReferenceForEveryRule) {
           }
           ASSERT_TRUE(std::isfinite(gl.axisSharpness.w)) << "VSGL " << i;
         }
+        // The ISM's centre: a bilinear level-0 fetch, so the means' tolerance.
+        ASSERT_EQ(g.visibilityPoint.w, r.visibilityPoint.w) << "VSGL " << i;
+        for (int k = 0; k < 3; ++k)
+          ASSERT_NEAR(g.visibilityPoint[k], r.visibilityPoint[k],
+                      1e-3 * std::abs(r.visibilityPoint[k]) + 1e-4)
+              << "VSGL " << i;
       }
       std::printf("rule %u N %u: %zu tie flips, total power gpu %.6f ref %.6f\n", rule, n, flips,
                   gpuTotal.g, refTotal.g);

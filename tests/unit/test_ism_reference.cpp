@@ -72,6 +72,17 @@ TEST(IsmReference, FrameIsOrthonormalAndTheParaboloidCoversTheHemisphere) {
   }
   gpu::Vsgl dark{};
   EXPECT_FALSE(gi::ismFrameReference(dark, 0.1).lit);
+  // A visibility point moves the centre there (lifted the same way); axis and extent stay the
+  // lobes'.
+  gpu::Vsgl v{};
+  v.diffuse.meanVariance = glm::vec4(1, 2, 3, 0.04f);
+  v.diffuse.axisSharpness = glm::vec4(0, 0, 1, 1);
+  v.diffuse.power = glm::vec4(1.0f);
+  v.visibilityPoint = glm::vec4(1.5f, 2.25f, 3.0f, 1.0f);
+  const gi::IsmFrameReference f = gi::ismFrameReference(v, 0.1);
+  EXPECT_NEAR(glm::length(f.centre - glm::dvec3(1.5, 2.25, 3.1)), 0.0, 1e-6);
+  EXPECT_EQ(f.axis, glm::dvec3(0, 0, 1));
+  EXPECT_NEAR(f.extent, 0.2, 1e-7);
 }
 
 TEST(IsmReference, PullPushFillsHolesWithinEachTile) {

@@ -76,6 +76,8 @@ IsmFrameReference ismFrameReference(const gpu::Vsgl& vsgl, double centreOffset) 
         centreOffset * f.axis;
     f.extent = std::sqrt(std::max(
         (wd * vsgl.diffuse.meanVariance.w + ws * vsgl.specular.meanVariance.w) / (wd + ws), 0.0));
+    if (vsgl.visibilityPoint.w > 0.0f)
+      f.centre = glm::dvec3(vsgl.visibilityPoint) + centreOffset * f.axis;
   }
   const engine::OrthonormalBasis basis = engine::orthonormalBasis(f.axis);
   f.tangent = basis.tangent;

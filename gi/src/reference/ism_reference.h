@@ -46,7 +46,8 @@ struct IsmFrameReference {
   bool lit = false;
   double extent = 0.0;  // m, the lobes' power-weighted spatial standard deviation
 };
-// ismFrameFromLobes of common/ism_lookup.glsl.
+// ismFrame of common/ism_lookup.glsl: the lobes' frame (ismFrameFromLobes), centred on the
+// VSGL's visibility point when it has one.
 IsmFrameReference ismFrameReference(const gpu::Vsgl& vsgl, double centreOffset);
 
 // Paraboloid coordinates of p in the frame, and its distance and d_z; uv is meaningful for

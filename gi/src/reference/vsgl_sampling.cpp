@@ -309,6 +309,14 @@ std::vector<gpu::Vsgl> generateVsglsReference(
           float(area / (4.0 * std::numbers::pi));
     }
     vsgl.kernel = glm::vec4(glm::dvec4(warp.x, level, filtered));
+    // The ISM's centre: the power-weighted level-0 position bilinearly under x.
+    const double weight = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POWER], warp.x, 0.0).w +
+                          sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POWER], warp.x, 0.0).w;
+    const glm::dvec3 positions =
+        glm::dvec3(sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POSITION], warp.x, 0.0)) +
+        glm::dvec3(sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POSITION], warp.x, 0.0));
+    if (weight > 0.0)
+      vsgl.visibilityPoint = glm::vec4(glm::dvec4(origin + positions / weight, 1.0));
   }
   return vsgls;
 }

@@ -145,7 +145,8 @@ double texelPatchArea(const TexelPatch& patch, glm::dvec3 offset, glm::dvec3 nor
 // (VSGL_RULE_TOK15 or VSGL_RULE_MODIFIED), read the six attribute pyramids (indexed by
 // VSGL_ATTR_*) with the same trilinear kernel, scale means to cluster sums with that rule's
 // estimator, and build both lobes. kernel = (x, l, p~(x, l)). An all-zero PDF gives n
-// zero-power VSGLs. VSGL_RULE_POINT (the VPL baseline, docs/techniques/vpl-baseline.md): the
+// zero-power VSGLs. visibilityPoint = origin + the bilinear level-0 position sums over the
+// weights at x (w = 1; 0 where x sees no power). VSGL_RULE_POINT (the VPL baseline, docs/techniques/vpl-baseline.md): the
 // warped texel alone, at its centre and level 0, over N p; both lobes' variance a / (4 pi), the
 // disc of area a = texelPatchArea x max(1, M / (N p)) that the VPL stands for.
 std::vector<gpu::Vsgl> generateVsglsReference(
