@@ -206,8 +206,8 @@ struct Settings {
   PdfKind pdf = PdfKind::Brsm;
   // FilteredImportanceSampling, or a baseline for comparison: k-means (its resources are created
   // with its first frame: keys, values and sort scratch of 16 bytes per RSM texel) or VPLs (no
-  // resources of its own; shading costs about as much per pixel-VPL pair as per pixel-VSGL pair,
-  // measured in docs/benchmarks.md).
+  // resources of its own; a pixel-VPL pair costs about a third of a pixel-VSGL pair, 14-28 against
+  // 51-74 ns on lavapipe, but every pixel is shaded: docs/benchmarks.md).
   VsglMethod method = VsglMethod::FilteredImportanceSampling;
   KmeansSettings kmeans;
   BrsmSettings brsm;
