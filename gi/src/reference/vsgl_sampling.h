@@ -146,9 +146,10 @@ double texelPatchArea(const TexelPatch& patch, glm::dvec3 offset, glm::dvec3 nor
 // VSGL_ATTR_*) with the same trilinear kernel, scale means to cluster sums with that rule's
 // estimator, and build both lobes. kernel = (x, l, p~(x, l)). An all-zero PDF gives n
 // zero-power VSGLs. visibilityPoint = origin + the bilinear level-0 position sums over the
-// weights at x (w = 1; 0 where x sees no power). VSGL_RULE_POINT (the VPL baseline, docs/techniques/vpl-baseline.md): the
-// warped texel alone, at its centre and level 0, over N p; both lobes' variance a / (4 pi), the
-// disc of area a = texelPatchArea x max(1, M / (N p)) that the VPL stands for.
+// weights at x (w = 1; 0 where x sees no power). VSGL_RULE_POINT (the VPL baseline,
+// docs/techniques/vpl-baseline.md): the warped texel alone, at its centre and level 0, over N p;
+// both lobes' variance a / (4 pi), the disc of area a = texelPatchArea x max(1, M / (N p)) that the
+// VPL stands for.
 std::vector<gpu::Vsgl> generateVsglsReference(
     const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, const ScalarPyramid& pdf,
     glm::dvec3 origin, uint32_t n, double k, uint32_t rule, const TexelPatch& patch = {});
