@@ -21,8 +21,8 @@ struct PointLight {
   glm::dvec3 specular{0.0};  // Phi_s
   glm::dvec3 axis{0.0, 0.0, 1.0};
   double sharpness = 0.0;
-  glm::dvec3 planeNormal{0.0};  // the planar emitter's n (vsglEmission); beta = planarity
-  double planarity = 0.0;
+  glm::dvec3 plane{0.0};  // the planar emitter's beta n (vsglEmission)
+  double flatness = 1.0;  // 1 - beta
 };
 
 PointLight pointLight(const gpu::Vsgl& v, bool diffuseLobesOnly) {
@@ -36,11 +36,11 @@ PointLight pointLight(const gpu::Vsgl& v, bool diffuseLobesOnly) {
   if (!diffuseLobesOnly) p.specular = glm::dvec3(v.specular.power);
   p.axis = glm::dvec3(v.specular.axisSharpness);
   p.sharpness = v.specular.axisSharpness.w;
-  // The plane of vsglEmitterPlane: the diffuse lobe's axis, blended in by its planarity.
-  if (hasNormal && glm::dot(p.normal, p.normal) > 0.0) {
-    p.planeNormal = p.normal;
-    p.planarity = vsglPlanarity(v.diffuse.axisSharpness.w);
-  }
+  // The planar emitter's plane (vsglEmitterPlane on the GPU); its normalisation is taken per
+  // pair below, at the widened sharpness.
+  const VsglLobeEmission emission = vsglEmission(v, true).specular;
+  p.plane = emission.plane;
+  p.flatness = emission.flatness;
   return p;
 }
 
@@ -50,11 +50,10 @@ glm::dvec3 intensity(const PointLight& p, glm::dvec3 toward, double spread) {
   if (p.specular == glm::dvec3(0.0)) return i;
   const double lambda = p.sharpness / (1.0 + p.sharpness * spread);
   const double g = std::exp(lambda * (glm::dot(p.axis, toward) - 1.0));
-  const double cut =
-      (1.0 - p.planarity) + p.planarity * std::max(glm::dot(p.planeNormal, toward), 0.0);
-  const double axisDotNormal =
-      p.planarity > 0.0 ? std::max(glm::dot(p.axis, p.planeNormal), 0.0) : 0.0;
-  return i + p.specular * (g * cut / vsglSpecularNormalisation(lambda, axisDotNormal, p.planarity));
+  const double beta = 1.0 - p.flatness;
+  const double cut = p.flatness + std::max(glm::dot(p.plane, toward), 0.0);
+  const double axisDotNormal = beta > 0.0 ? std::max(glm::dot(p.axis, p.plane) / beta, 0.0) : 0.0;
+  return i + p.specular * (g * cut / vsglSpecularNormalisation(lambda, axisDotNormal, beta));
 }
 
 }  // namespace
