@@ -41,6 +41,7 @@ layout(push_constant) uniform Push { VsglShadePush pc; };
 layout(constant_id = 0) const uint kFlags = VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY;
 
 #include "common/ism_lookup.glsl"
+#include "common/ism_broadcast.glsl"
 #include "common/vsgl_emitter.glsl"
 
 // One VPL as the loop sees it: the lane's own record, or lane j's after a broadcast.
@@ -72,17 +73,6 @@ PointLight broadcastLight(PointLight p, uint lane) {
                     subgroupBroadcast(p.diffusePower, lane),
                     subgroupBroadcast(p.axisSharpness, lane),
                     subgroupBroadcast(p.specularPower, lane), subgroupBroadcast(p.plane, lane));
-}
-
-IsmFrame broadcastFrame(IsmFrame f, uint lane) {
-  IsmFrame b;
-  b.centre = subgroupBroadcast(f.centre, lane);
-  b.tangent = subgroupBroadcast(f.tangent, lane);
-  b.bitangent = subgroupBroadcast(f.bitangent, lane);
-  b.axis = subgroupBroadcast(f.axis, lane);
-  b.lit = subgroupBroadcast(f.lit, lane);
-  b.extent = subgroupBroadcast(f.extent, lane);
-  return b;
 }
 
 // The radiant intensity the VPL sends along unit `toward` (from the VPL), its specular SG widened

@@ -41,6 +41,7 @@ layout(push_constant) uniform Push { VsglShadePush pc; };
 layout(constant_id = 0) const uint kFlags = VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY;
 
 #include "common/ism_lookup.glsl"
+#include "common/ism_broadcast.glsl"
 #include "common/sg_lighting.glsl"
 #include "common/vsgl_bound.glsl"
 #include "common/vsgl_emitter.glsl"
@@ -78,17 +79,6 @@ ShadeLobe broadcastLobe(ShadeLobe lobe, uint lane) {
   return ShadeLobe(subgroupBroadcast(lobe.meanVariance, lane),
                    subgroupBroadcast(lobe.axisSharpness, lane),
                    subgroupBroadcast(lobe.colourLogScale, lane));
-}
-
-IsmFrame broadcastFrame(IsmFrame f, uint lane) {
-  IsmFrame b;
-  b.centre = subgroupBroadcast(f.centre, lane);
-  b.tangent = subgroupBroadcast(f.tangent, lane);
-  b.bitangent = subgroupBroadcast(f.bitangent, lane);
-  b.axis = subgroupBroadcast(f.axis, lane);
-  b.lit = subgroupBroadcast(f.lit, lane);
-  b.extent = subgroupBroadcast(f.extent, lane);
-  return b;
 }
 
 float largestChannel(vec3 c) {

@@ -51,9 +51,11 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
   if (queued && !in.queue) throw engine::Error("VSGL shading: a queued variant without a queue");
   if (in.points && (in.flags & (VSGL_SHADE_QUEUE | VSGL_SHADE_CULL)))
     throw engine::Error("VPL shading: neither adaptive queues nor culling apply to point lights");
-  std::optional<engine::ComputeProgram>& program = programs_[in.points][in.flags];
+  // vpl_shade.comp's emitters are always planar: one variant serves both values of the flag.
+  const uint32_t variant = in.points ? in.flags & ~VSGL_SHADE_PLANAR : in.flags;
+  std::optional<engine::ComputeProgram>& program = programs_[in.points][variant];
   if (!program) {
-    const uint32_t specialization[] = {in.flags};
+    const uint32_t specialization[] = {variant};
     const std::span<const uint32_t> spirv = in.points ? std::span<const uint32_t>(kVplShadeSpv)
                                                       : std::span<const uint32_t>(kVsglShadeSpv);
     program.emplace(*ctx_, in.points ? "vpl_shade" : "vsgl_shade", spirv,
