@@ -6,6 +6,7 @@
 #include "gi/indirect_lighting.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -48,7 +49,16 @@ engine::Light engineLight(const Light& light) {
   l.intensity = light.intensity;
   l.innerConeAngle = light.innerConeAngle;
   l.outerConeAngle = light.outerConeAngle;
+  l.range = light.range;
   return l;
+}
+
+// Whether a spot's range window (zero from `range` on) ends before the nearest point of the
+// scene's box: then no surface receives its light, direct or bounced.
+bool rangeEndsBeforeScene(const Light& light, const engine::Bounds& bounds) {
+  if (light.type != Light::Type::Spot || !(light.range > 0.0f)) return false;
+  const glm::vec3 nearest = glm::clamp(light.position, bounds.min, bounds.max);
+  return glm::length(nearest - light.position) >= light.range;
 }
 
 engine::Image borrowImage(const ImageRef& ref, uint32_t width, uint32_t height, VkFormat format) {
@@ -169,8 +179,9 @@ namespace {
 
 // The effect planner (docs/integration.md, "The effect planner"): which passes this frame needs.
 // Each decision leaves out only work whose result is exactly zero or never read.
-FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance, float maxSpecular,
-                    bool canOcclude, bool environment, bool environmentChanged) {
+FramePlan planFrame(const Settings& s, const Light& light, const engine::Bounds& bounds,
+                    float maxReflectance, float maxSpecular, bool canOcclude, bool environment,
+                    bool environmentChanged) {
   FramePlan plan;
   plan.environment = environment;
   plan.environmentConverted = environment && environmentChanged;
@@ -224,6 +235,11 @@ FramePlan planFrame(const Settings& s, const Light& light, float maxReflectance,
     plan.reasons.push_back(
         "light: no power (intensity x colour = 0): no RSM, PDF, VSGL, ISM or shading pass; "
         "black outputs");
+  } else if (s.planner.skipWithoutBounce && rangeEndsBeforeScene(light, bounds)) {
+    plan.bounce = false;
+    plan.reasons.push_back(
+        "light: its range ends before the scene's bounds (FrameInput.light.range): no RSM, PDF, "
+        "VSGL, ISM or shading pass; black outputs");
   } else if (s.planner.skipWithoutBounce && !(maxReflectance > 0.0f)) {
     plan.bounce = false;
     plan.reasons.push_back(
@@ -249,6 +265,9 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
       throw engine::Error(
           "FrameInput.gbuffer: every image needs its VkImage, VkImageView and current layout "
           "(not UNDEFINED)");
+  if (!(in.light.range >= 0.0f) || !std::isfinite(in.light.range))
+    throw engine::Error("FrameInput.light.range: " + std::to_string(in.light.range) +
+                        " m must be finite and >= 0 (0 = no range)");
   if (!scene) throw engine::Error("IndirectLighting::record: setScene was not called");
   if (settings.pdf == PdfKind::Brsm && !importance) createBrsm();
 
@@ -265,8 +284,8 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
   const uint32_t rule = static_cast<uint32_t>(settings.rule);
 
-  plan = planFrame(settings, in.light, maxReflectance, maxSpecular, canOcclude, environmentSet,
-                   environmentSet && environmentMap->pending());
+  plan = planFrame(settings, in.light, bounds, maxReflectance, maxSpecular, canOcclude,
+                   environmentSet, environmentSet && environmentMap->pending());
 
   ctx.recordDeferredSetup(cmd);
   profiler.beginFrame(cmd);

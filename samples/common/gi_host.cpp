@@ -146,6 +146,7 @@ gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& vi
   in.light.intensity = light.intensity;
   in.light.innerConeAngle = light.innerConeAngle;
   in.light.outerConeAngle = light.outerConeAngle;
+  in.light.range = light.range;
   return in;
 }
 

@@ -38,6 +38,11 @@ void main() {
       float cosTheta = dot(normalize(offset), pc.axis.xyz);
       float falloff = clamp(cosTheta * pc.spot.x + pc.spot.y, 0.0, 1.0);
       incident = pc.radiance.rgb * (falloff * falloff * pc.spot.z * cosTheta * cosTheta * cosTheta);
+      if (pc.spot.w > 0.0) {  // the range window of the light's direct light (direct_light.comp)
+        float x = length(offset) / pc.spot.w;
+        x *= x;
+        incident *= clamp(1.0 - x * x, 0.0, 1.0);
+      }
     } else {
       incident = pc.radiance.rgb * pc.spot.z;
     }

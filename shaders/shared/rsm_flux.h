@@ -3,6 +3,8 @@
 //   incident flux  Phi_in = I(theta) * A * cos^3(theta)   (spot; A = texel area on the plane at
 //                  unit distance, cos^3 = solid-angle Jacobian of that plane)
 //                  Phi_in = E * texel area                (directional, orthographic RSM)
+//                  a spot with a range r also carries KHR_lights_punctual's window
+//                  clamp(1 - (d / r)^4, 0, 1) at the texel's distance d, as its direct light
 //   reflected flux Phi_d = albedo * Phi_in,  Phi_s = A(n . l) * Phi_in, A the specular lobe's
 //                  directional albedo F90 A0 + F0 (A1 - A0) from the GGX table of
 //                  common/sg_lighting.glsl at the light's incidence (Fresnel and masking in it)
@@ -27,7 +29,8 @@ struct RsmFluxPush {
   vec4 axis;                 // xyz unit direction the light travels (view axis), w unused
   vec4 radiance;             // rgb = colour * intensity: W/sr (spot) or W/m^2 (directional)
   vec4 spot;                 // x = angle scale, y = angle offset (KHR falloff), z = texel area A
-                             // (spot: on the unit-distance plane; directional: m^2), w unused
+                             // (spot: on the unit-distance plane; directional: m^2), w = range
+                             // in metres (spot; 0 = none)
   uvec2 size;                // RSM texels
   uint perspective;          // 1 = spot (perspective RSM), 0 = directional (orthographic)
   uint pad;

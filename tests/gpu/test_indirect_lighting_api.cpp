@@ -267,6 +267,13 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
     EXPECT_FALSE(s);
     EXPECT_NE(s.message.find("setScene"), std::string::npos) << s.message;
   });
+  gi::FrameInput badRange = input();
+  badRange.light.range = std::numeric_limits<float>::infinity();
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    gi::Status s = lighting->record(cmd, badRange, &out);
+    EXPECT_FALSE(s);
+    EXPECT_EQ(s.message, "FrameInput.light.range: inf m must be finite and >= 0 (0 = no range)");
+  });
   gi::SceneGeometry empty = geometry();
   empty.triangleCount = 0;
   EXPECT_FALSE(lighting->setScene(empty));
@@ -331,6 +338,12 @@ TEST_F(IndirectLightingApiTest, PlannerSkipsEveryPassWhenNothingCanBounce) {
   gi::FrameInput dark = input();
   dark.light.intensity = 0.0f;
   expectSame(dark, geometry(), "light: no power");
+  // A spot 3 m above the box's top whose range is 2 m: its window is 0 on every surface.
+  gi::FrameInput far = input();
+  far.light.position.y = 5.0f;
+  far.light.range = 2.0f;
+  ASSERT_EQ(far.light.type, gi::Light::Type::Spot);
+  expectSame(far, geometry(), "light: its range ends before the scene's bounds");
 
   // A black dielectric without a specular lobe (KHR_materials_specular strength 0): no diffuse
   // albedo, F0 = F90 = 0. (A black metal still reflects at grazing angles, F90 = 1.)

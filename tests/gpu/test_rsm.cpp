@@ -1,5 +1,6 @@
 // The reflective shadow map: texel solid angles, GPU flux pass against its double-precision
 // twin, zero power off the cone and on background, and conservation of the light's flux.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -154,6 +155,49 @@ TEST_F(Rsm, IncidentFluxEqualsIntensityTimesTheConesWeightedSolidAngle) {
   std::printf("RSM incident flux %.8f W, expected %.8f W, relative error %.2e\n", total, expected,
               error);
   EXPECT_LT(error, 1e-3);
+}
+
+// A spot's range (KHR_lights_punctual) scales its RSM flux by the window of its direct light,
+// clamp(1 - (d / range)^4, 0, 1) at the texel's distance d: the GPU against the twin (same
+// tolerances as above, plus 5e-5 of the unwindowed flux: the window 1 - r^4 moves by 4 r^4 times
+// the distance's relative error, and the GPU's positions agree with the twin's to 1e-5 relative
+// (FluxMatchesReferenceOnBuiltinScenes), so its relative error is unbounded where it nears 0), and
+// the twin with the range against the twin without it, texel by texel (relative 1e-12: the same
+// double arithmetic times the window).
+TEST_F(Rsm, RangeWindowScalesTheFluxAsTheDirectLight) {
+  engine::Scene scene = engine::makeBuiltinScene("cornell");
+  engine::Light light = scene.lights.at(0);
+  light.range = 2.2f;  // the spot is 1.9 m above the floor: the far floor lies past the range
+  const uint32_t size = 64;
+  gi::RsmView view = gi::makeRsmView(scene, light, size);
+  GpuRsm gpu = renderRsm(ctx(), scene, light, view, size);
+  const auto ref = gi::rsmFluxReference(gpu.surface, view, gi::lightFluxSource(light));
+  engine::Light unbounded = light;
+  unbounded.range = 0.0f;
+  const auto full = gi::rsmFluxReference(gpu.surface, view, gi::lightFluxSource(unbounded));
+  const double floor = 1e-6 * maxLuminance(full);
+  size_t cut = 0, windowed = 0;
+  for (size_t i = 0; i < ref.size(); ++i) {
+    if (full[i].lit == 0.0) continue;
+    const double r = glm::length(full[i].offset) / light.range;
+    const double window = std::clamp(1.0 - r * r * r * r, 0.0, 1.0);
+    cut += window == 0.0;
+    windowed += window > 0.0 && window < 0.9;
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_NEAR(ref[i].diffuseFlux[k], window * full[i].diffuseFlux[k],
+                  1e-12 * full[i].diffuseFlux[k])
+          << "texel " << i;
+      ASSERT_LE(std::abs(gpu.diffuse[i][k] - ref[i].diffuseFlux[k]),
+                1e-5 * ref[i].diffuseFlux[k] + 5e-5 * full[i].diffuseFlux[k] + floor)
+          << "texel " << i << " diffuse " << k;
+      ASSERT_LE(std::abs(gpu.specular[i][k] - ref[i].specularFlux[k]),
+                1e-5 * ref[i].specularFlux[k] + 5e-5 * full[i].specularFlux[k] + floor)
+          << "texel " << i << " specular " << k;
+    }
+    if (window == 0.0) EXPECT_EQ(gpu.position[i].w, 0.0f) << "texel " << i << " past the range";
+  }
+  EXPECT_GT(cut, ref.size() / 20) << "some of the room must lie past the range";
+  EXPECT_GT(windowed, ref.size() / 20) << "some of it inside the window's fall-off";
 }
 
 TEST(RsmView, RefusesPointLightsAndOverwideSpots) {

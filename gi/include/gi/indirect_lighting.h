@@ -114,6 +114,10 @@ struct Light {
   float intensity = 1.0f;                  // spot: W/sr (candela / 683); directional: W/m^2
   float innerConeAngle = 0.0f;             // radians, [0, outer)
   float outerConeAngle = 0.785398f;        // radians, (0, 1.3]
+  // Spot: metres, 0 = none. KHR_lights_punctual's window clamp(1 - (d / range)^4, 0, 1) at
+  // distance d scales the light that reaches the RSM, so the bounce ends where the host's direct
+  // light does. Ignored for a directional light (KHR has no range for it).
+  float range = 0.0f;
 };
 
 // The camera that produced the G-buffer: Vulkan clip space (NDC y down, depth [0, 1]),

@@ -98,8 +98,9 @@ struct IsmSettings {
 // be turned off for comparison. A decision leaves out work whose result is exactly zero or never
 // read, so the images are the same with it on or off; skipWithoutOccluders says how it differs.
 struct PlannerSettings {
-  // No light can bounce (light intensity x colour = 0, or SceneGeometry::maxReflectance = 0):
-  // skip every pass and write black outputs.
+  // No light can bounce (light intensity x colour = 0, a spot whose range ends before the
+  // scene's bounds, or SceneGeometry::maxReflectance = 0): skip every pass and write black
+  // outputs.
   bool skipWithoutBounce = true;
   // Subgroups of pixels that all see the sky (depth 1) skip the VSGL loop.
   bool skipSky = true;

@@ -64,6 +64,8 @@ FluxSource lightFluxSource(const engine::Light& light) {
   source.radiance = light.color * light.intensity;
   source.falloff =
       light.type == engine::LightType::Spot ? engine::spotFalloff(light) : glm::vec2(0.0f, 1.0f);
+  // KHR_lights_punctual: a directional light has no range.
+  source.range = light.type == engine::LightType::Spot ? light.range : 0.0f;
   return source;
 }
 
@@ -127,7 +129,7 @@ void FluxPass::record(VkCommandBuffer cmd, engine::GBuffer& surface, const RsmVi
   push.invViewProjRelative = view.invViewProjRelative;
   push.axis = glm::vec4(view.axis, 0.0f);
   push.radiance = glm::vec4(source.radiance, 0.0f);
-  push.spot = glm::vec4(source.falloff, view.texelArea, 0.0f);
+  push.spot = glm::vec4(source.falloff, view.texelArea, source.range);
   push.size = glm::uvec2(out.width, out.height);
   push.perspective = view.perspective ? 1u : 0u;
   using engine::Binding;

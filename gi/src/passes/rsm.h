@@ -47,6 +47,9 @@ double frustumSolidAngle(double halfAngle);
 struct FluxSource {
   glm::vec3 radiance{1.0f};       // W/sr (spot), W/m^2 (directional), 1 (importance)
   glm::vec2 falloff{0.0f, 1.0f};  // saturate(cos * x + y)^2; (0, 1) = no falloff
+  // A spot's range in metres, 0 = none: the flux carries KHR_lights_punctual's window
+  // clamp(1 - (d / range)^4, 0, 1) at the texel's distance d, as the light's direct light does.
+  float range = 0.0f;
 };
 FluxSource lightFluxSource(const engine::Light& light);
 

@@ -30,6 +30,10 @@ std::vector<RsmTexelReference> rsmFluxReference(const engine::GBufferData& surfa
         double c = glm::dot(glm::normalize(offset), axis);
         double falloff = std::clamp(c * falloffParams.x + falloffParams.y, 0.0, 1.0);
         t.incident = radiance * (falloff * falloff * texelArea * c * c * c);
+        if (source.range > 0.0f) {
+          const double r = glm::length(offset) / source.range;
+          t.incident *= std::clamp(1.0 - r * r * r * r, 0.0, 1.0);
+        }
       } else {
         t.incident = radiance * texelArea;
       }
