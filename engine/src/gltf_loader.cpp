@@ -108,7 +108,6 @@ void SceneBuilder::build() {
   convertCameras();
   traverseNodes();
   if (scene_.indices.empty()) fail("scene has no triangles");
-  if (scene_.lights.empty()) fail("scene has no lights (KHR_lights_punctual)");
   if (defaultMaterial_) scene_.materials.push_back(*defaultMaterial_);
 }
 

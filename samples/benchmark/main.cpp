@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "cli_values.h"
+#include "default_light.h"
 #include "engine/gbuffer.h"
 #include "engine/image_metrics.h"
 #include "engine/machine_peak.h"
@@ -41,6 +42,8 @@ struct Options {
   std::vector<std::string> methods;
   std::vector<uint32_t> counts;
   uint32_t width = 0, height = 0;
+  samples::LightChoice light = samples::LightChoice::Auto;
+  std::string lightName = "auto";  // as typed: part of every row's identity
 };
 
 const char* usage() {
@@ -58,6 +61,7 @@ const char* usage() {
          "  --counts LIST   comma-separated VSGL counts, 1..65535, instead of the preset's\n"
          "  --width N --height N  image size, 1..8192, instead of the preset's (the path-traced\n"
          "                  reference's cost grows with the pixel count)\n"
+         SAMPLES_LIGHT_USAGE
          "  --device SEL    Vulkan device index or name substring\n"
          "  --validation    enable the Khronos validation layer\n";
 }
@@ -72,6 +76,10 @@ Options parseOptions(int argc, char** argv) {
       o.outDir = args.value();
     else if (arg == "--scenes")
       o.scenes = samples::parseList(arg, args.value());
+    else if (arg == "--light") {
+      o.lightName = args.value();
+      o.light = samples::parseLightChoice(arg, o.lightName);
+    }
     else if (arg == "--methods") {
       o.methods = samples::parseList(arg, args.value());
       for (const std::string& m : o.methods)
@@ -327,6 +335,9 @@ int run(const Options& o) {
   std::vector<engine::Scene> scenes;  // loaded once, checked before anything is measured
   for (const std::string& name : p.scenes) {
     scenes.push_back(samples::loadScene(name));
+    const std::string note = samples::applyLightChoice(scenes.back(), o.light, false,
+                                                       float(p.width) / float(p.height));
+    if (!note.empty()) std::printf("%s\n", note.c_str());
     if (!samples::bouncingLight(scenes.back()))
       throw engine::Error(name + ": no spot or directional light to bounce");
   }
@@ -359,6 +370,7 @@ int run(const Options& o) {
         const RowSpec& spec = group[i];
         identities.push_back({{"preset", p.name},
                               {"scene", sceneName},
+                              {"light", o.lightName},
                               {"method", spec.method},
                               {"count", spec.count},
                               {"k", spec.k},

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "cli_values.h"
+#include "default_light.h"
 #include "embree_scene.h"
 #include "engine/error.h"
 #include "engine/image_io.h"
@@ -39,6 +40,7 @@ struct Options {
   float noise = 0.03f;
   uint32_t samples = 32;
   std::string outDir = "budget";
+  samples::LightChoice light = samples::LightChoice::Auto;
   samples::CommonOptions common;
 };
 
@@ -47,6 +49,7 @@ const char* usage() {
          "  --scenes a,b         built-in scenes or glTF files (default cornell,atrium,checker)\n"
          "  --counts 64,512      VSGL counts, 1..4096 (default 64,128,256,512)\n"
          "  --width N --height N image size, 8..1024 (default 128x72)\n"
+         SAMPLES_LIGHT_USAGE
          "  --rsm N              RSM side, a power of two in 16..512 (default 128); the VPL\n"
          "                       stages cost pixels x texels visibility rays\n"
          "  --method NAME        modified (default), tok15, kmeans-2d or kmeans-3d\n"
@@ -69,6 +72,8 @@ Options parseOptions(int argc, char** argv) {
     const std::string_view arg = args.option();
     if (arg == "--scenes")
       o.scenes = samples::parseList(arg, args.value());
+    else if (arg == "--light")
+      o.light = samples::parseLightChoice(arg, args.value());
     else if (arg == "--counts")
       o.counts = samples::parseUintList(arg, args.value(), 1, 4096);
     else if (arg == "--width")
@@ -186,6 +191,9 @@ int run(const Options& o) {
   std::vector<engine::Scene> scenes;
   for (const std::string& name : o.scenes) {
     scenes.push_back(samples::loadScene(name));
+    const std::string note =
+        samples::applyLightChoice(scenes.back(), o.light, false, float(o.width) / float(o.height));
+    if (!note.empty()) std::printf("%s\n", note.c_str());
     if (!samples::bouncingLight(scenes.back()))
       throw engine::Error(name + ": no spot or directional light to bounce");
   }

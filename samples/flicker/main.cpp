@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_values.h"
+#include "default_light.h"
 #include "engine/gbuffer.h"
 #include "engine/gbuffer_reference.h"
 #include "engine/image_metrics.h"
@@ -51,6 +52,7 @@ struct Options {
   uint32_t vplRsm = 32;
   float noise = 0.05f;
   std::string outDir = "flicker";
+  samples::LightChoice light = samples::LightChoice::Auto;
   samples::CommonOptions common;  // --device, --validation, --help
 };
 
@@ -60,6 +62,7 @@ const char* usage() {
          "checker)\n"
          "  --motion M         static, orbit (camera), sweep (light) or move (a box) (default "
          "orbit)\n"
+         SAMPLES_LIGHT_USAGE
          "  --frames N         frames in the sequence, 2..1000 (default 16)\n"
          "  --width N --height N  image size, 1..4096 (default 160x90)\n"
          "  --count N          VSGLs, 1..65535 (default 128)\n"
@@ -89,6 +92,8 @@ Options parseOptions(int argc, char** argv) {
     const std::string_view arg = args.option();
     if (arg == "--scene")
       o.scene = args.value();
+    else if (arg == "--light")
+      o.light = samples::parseLightChoice(arg, args.value());
     else if (arg == "--motion")
       o.motion = args.value();
     else if (arg == "--frames")
@@ -203,7 +208,10 @@ int run(const Options& o) {
     return 0;
   }
   const flicker::Motion motion = flicker::parseMotion(o.motion);
-  const engine::Scene base = samples::loadScene(o.scene);
+  engine::Scene base = samples::loadScene(o.scene);
+  const std::string lightNote =
+      samples::applyLightChoice(base, o.light, false, float(o.width) / float(o.height));
+  if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
   const engine::Light* light = samples::bouncingLight(base);
   if (!light) throw engine::Error(o.scene + ": no spot or directional light to bounce");
   const auto lightIndex = static_cast<uint32_t>(light - base.lights.data());

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "cli_values.h"
+#include "default_light.h"
 #include "embree_scene.h"
 #include "engine/error.h"
 #include "engine/image_metrics.h"
@@ -28,6 +29,7 @@ struct Options {
   bool cache = true;
   uint32_t vplRsm = 0;  // 0 = no VPL gather
   std::string compare;  // an image to score against the reference's indirect light
+  samples::LightChoice light = samples::LightChoice::Auto;
   bool help = false;
 };
 
@@ -37,6 +39,7 @@ const char* usage() {
          "cornell)\n"
          "  --out DIR            output directory (default out)\n"
          "  --width N --height N image size in pixels, 1..8192 (default 640x360)\n"
+         SAMPLES_LIGHT_USAGE
          "  --noise R            stop a pixel when its standard error is R of its value,\n"
          "                       0.001..0.5 (default 0.01), or R/10 of the image's mean\n"
          "  --max-samples N      per pixel, 16..1048576 (default 65536)\n"
@@ -56,6 +59,8 @@ Options parseOptions(int argc, char** argv) {
     const std::string_view arg = args.option();
     if (arg == "--scene")
       o.scene = args.value();
+    else if (arg == "--light")
+      o.light = samples::parseLightChoice(arg, args.value());
     else if (arg == "--out")
       o.outDir = args.value();
     else if (arg == "--width")
@@ -114,7 +119,10 @@ int run(const Options& o) {
     std::printf("%s", usage());
     return 0;
   }
-  const engine::Scene scene = samples::loadScene(o.scene);
+  engine::Scene scene = samples::loadScene(o.scene);
+  const std::string lightNote =
+      samples::applyLightChoice(scene, o.light, false, float(o.width) / float(o.height));
+  if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
   const uint32_t light = bouncingLight(scene);
   const engine::View view = samples::sceneView(scene, o.width, o.height);
   samples::createOutputDirectory(o.outDir);

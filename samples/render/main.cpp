@@ -52,6 +52,8 @@ int run(const render::Options& o) {
 
   auto wallStart = std::chrono::steady_clock::now();
   engine::Scene scene = samples::loadScene(o.scene);
+  const std::string lightNote = samples::applyLightChoice(scene, o.light, !o.environment.empty(),
+                                                             float(o.width) / float(o.height));
   std::string stem = std::filesystem::path(o.scene).stem().string();
   if (!o.exportGltf.empty()) engine::writeGltf(scene, o.exportGltf);
   engine::View view = samples::sceneView(scene, o.width, o.height);
@@ -62,6 +64,7 @@ int run(const render::Options& o) {
               ctx.info().name.c_str(), ctx.info().driver.c_str(), scene.source.c_str(),
               scene.triangleCount(), scene.lights.size(), o.width, o.height,
               render::shadowResolutionFor(o), o.shadows ? "" : " (off)");
+  if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
 
   engine::SceneGpu gpuScene = engine::uploadScene(ctx, scene);
   engine::Rasterizer rasterizer(ctx);

@@ -31,6 +31,7 @@ const char* usage() {
          "  --list-devices       print the Vulkan devices and exit\n"
          "  --validation         enable the Khronos validation layer\n"
          "  --export-gltf PATH   also write the scene as a .gltf file\n"
+         SAMPLES_LIGHT_USAGE
          "indirect light (VSGLs through the public API, gi/include/gi/settings.h):\n"
          "  --no-indirect        direct light only\n"
          "  --method NAME        modified (modified FIS, default), tok15 (Tokuyoshi 2015's kernel\n"
@@ -97,6 +98,8 @@ Options parseOptions(int argc, char** argv) {
     const std::string_view arg = args.option();
     if (arg == "--scene")
       o.scene = args.value();
+    else if (arg == "--light")
+      o.light = samples::parseLightChoice(arg, args.value());
     else if (arg == "--out")
       o.outDir = args.value();
     else if (arg == "--width")

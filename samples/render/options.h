@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "default_light.h"
 #include "gi/settings.h"
 
 namespace render {
@@ -31,6 +32,7 @@ struct Options {
   // Environment light: a built-in name (engine/environments.h) or an HDR/EXR equirectangular
   // file; empty = none.
   std::string environment;
+  samples::LightChoice light = samples::LightChoice::Auto;  // --light
   // VSGL whose ISM visibility becomes the debug picture; -1 = the most powerful one.
   int32_t debugVsgl = -1;
 };

@@ -469,10 +469,17 @@ TEST(GltfLoaderErrors, BadTextures) {
   expectLoadError(dir / "undecodable.gltf", "garbage.png");
 }
 
+// A file without lights is a scene like any other: what lights it is the host's choice
+// (samples/common/default_light.h for the sample programs).
+TEST(GltfLoader, SceneWithoutLightsLoadsWithNone) {
+  const engine::Scene scene = engine::loadGltf((kGltfData / "no_lights.gltf").string());
+  EXPECT_TRUE(scene.lights.empty());
+  EXPECT_EQ(scene.triangleCount(), 1u);
+}
+
 TEST(GltfLoaderErrors, UnsupportedContent) {
   expectLoadError(kGltfData / "bad_points.gltf",
                   "mesh 'triangle' primitive 0: unsupported primitive mode 0 (only triangles)");
-  expectLoadError(kGltfData / "bad_no_lights.gltf", "scene has no lights (KHR_lights_punctual)");
   expectLoadError(kGltfData / "bad_spot_cone.gltf", "light 'badspot'");
   expectLoadError(kGltfData / "bad_spot_cone.gltf", "innerConeAngle");
 }

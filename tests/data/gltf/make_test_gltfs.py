@@ -274,7 +274,7 @@ def bad_files():
         g["buffers"][0]["uri"] = "does_not_exist.bin"
 
     simple("bad_points.gltf", points)
-    simple("bad_no_lights.gltf", no_lights)
+    simple("no_lights.gltf", no_lights)
     simple("bad_spot_cone.gltf", bad_spot)
     simple("bad_index_out_of_range.gltf", index_out_of_range)
     simple("bad_short_buffer.gltf", short_buffer)
