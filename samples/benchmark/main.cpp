@@ -60,8 +60,7 @@ const char* usage() {
          "                  vpl (the GPU VPL baseline)\n"
          "  --counts LIST   comma-separated VSGL counts, 1..65535, instead of the preset's\n"
          "  --width N --height N  image size, 1..8192, instead of the preset's (the path-traced\n"
-         "                  reference's cost grows with the pixel count)\n"
-         SAMPLES_LIGHT_USAGE
+         "                  reference's cost grows with the pixel count)\n" SAMPLES_LIGHT_USAGE
          "  --device SEL    Vulkan device index or name substring\n"
          "  --validation    enable the Khronos validation layer\n";
 }
@@ -79,8 +78,7 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--light") {
       o.lightName = args.value();
       o.light = samples::parseLightChoice(arg, o.lightName);
-    }
-    else if (arg == "--methods") {
+    } else if (arg == "--methods") {
       o.methods = samples::parseList(arg, args.value());
       for (const std::string& m : o.methods)
         if (std::find(bench::methods().begin(), bench::methods().end(), m) ==
@@ -335,8 +333,8 @@ int run(const Options& o) {
   std::vector<engine::Scene> scenes;  // loaded once, checked before anything is measured
   for (const std::string& name : p.scenes) {
     scenes.push_back(samples::loadScene(name));
-    const std::string note = samples::applyLightChoice(scenes.back(), o.light, false,
-                                                       float(p.width) / float(p.height));
+    const std::string note =
+        samples::applyLightChoice(scenes.back(), o.light, false, float(p.width) / float(p.height));
     if (!note.empty()) std::printf("%s\n", note.c_str());
     if (!samples::bouncingLight(scenes.back()))
       throw engine::Error(name + ": no spot or directional light to bounce");

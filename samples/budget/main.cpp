@@ -48,8 +48,7 @@ const char* usage() {
   return "usage: vsgl_budget [options]\n"
          "  --scenes a,b         built-in scenes or glTF files (default cornell,atrium,checker)\n"
          "  --counts 64,512      VSGL counts, 1..4096 (default 64,128,256,512)\n"
-         "  --width N --height N image size, 8..1024 (default 128x72)\n"
-         SAMPLES_LIGHT_USAGE
+         "  --width N --height N image size, 8..1024 (default 128x72)\n" SAMPLES_LIGHT_USAGE
          "  --rsm N              RSM side, a power of two in 16..512 (default 128); the VPL\n"
          "                       stages cost pixels x texels visibility rays\n"
          "  --method NAME        modified (default), tok15, kmeans-2d or kmeans-3d\n"

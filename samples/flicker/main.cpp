@@ -61,8 +61,7 @@ const char* usage() {
          "  --scene NAME|FILE  built-in scene (cornell, atrium, checker) or .gltf/.glb (default "
          "checker)\n"
          "  --motion M         static, orbit (camera), sweep (light) or move (a box) (default "
-         "orbit)\n"
-         SAMPLES_LIGHT_USAGE
+         "orbit)\n" SAMPLES_LIGHT_USAGE
          "  --frames N         frames in the sequence, 2..1000 (default 16)\n"
          "  --width N --height N  image size, 1..4096 (default 160x90)\n"
          "  --count N          VSGLs, 1..65535 (default 128)\n"

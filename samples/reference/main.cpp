@@ -38,8 +38,8 @@ const char* usage() {
          "  --scene NAME|FILE    built-in scene (cornell, atrium, checker) or .gltf/.glb (default "
          "cornell)\n"
          "  --out DIR            output directory (default out)\n"
-         "  --width N --height N image size in pixels, 1..8192 (default 640x360)\n"
-         SAMPLES_LIGHT_USAGE
+         "  --width N --height N image size in pixels, 1..8192 (default "
+         "640x360)\n" SAMPLES_LIGHT_USAGE
          "  --noise R            stop a pixel when its standard error is R of its value,\n"
          "                       0.001..0.5 (default 0.01), or R/10 of the image's mean\n"
          "  --max-samples N      per pixel, 16..1048576 (default 65536)\n"

@@ -53,7 +53,7 @@ int run(const render::Options& o) {
   auto wallStart = std::chrono::steady_clock::now();
   engine::Scene scene = samples::loadScene(o.scene);
   const std::string lightNote = samples::applyLightChoice(scene, o.light, !o.environment.empty(),
-                                                             float(o.width) / float(o.height));
+                                                          float(o.width) / float(o.height));
   std::string stem = std::filesystem::path(o.scene).stem().string();
   if (!o.exportGltf.empty()) engine::writeGltf(scene, o.exportGltf);
   engine::View view = samples::sceneView(scene, o.width, o.height);

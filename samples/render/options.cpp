@@ -30,8 +30,7 @@ const char* usage() {
          "auto)\n"
          "  --list-devices       print the Vulkan devices and exit\n"
          "  --validation         enable the Khronos validation layer\n"
-         "  --export-gltf PATH   also write the scene as a .gltf file\n"
-         SAMPLES_LIGHT_USAGE
+         "  --export-gltf PATH   also write the scene as a .gltf file\n" SAMPLES_LIGHT_USAGE
          "indirect light (VSGLs through the public API, gi/include/gi/settings.h):\n"
          "  --no-indirect        direct light only\n"
          "  --method NAME        modified (modified FIS, default), tok15 (Tokuyoshi 2015's kernel\n"
