@@ -25,8 +25,9 @@
 namespace gi {
 namespace {
 
-// Timed scopes per frame: about 12 fixed passes plus 3 per k-means iteration (64 at most).
-constexpr uint32_t kProfilerScopes = 256;
+// Timed scopes per frame: about 12 fixed passes, per light view (a point light has six) 5 more
+// and 3 per k-means iteration (64 at most).
+constexpr uint32_t kProfilerScopes = 16 + kCubeFaces * (5 + 3 * 64);
 
 // Settings that size resources; setSettings refuses to change them.
 bool sameCreationFields(const Settings& a, const Settings& b) {
@@ -41,10 +42,13 @@ bool sameCreationFields(const Settings& a, const Settings& b) {
 engine::Light engineLight(const Light& light) {
   engine::Light l;
   l.name = "FrameInput.light";
-  l.type =
-      light.type == Light::Type::Spot ? engine::LightType::Spot : engine::LightType::Directional;
+  l.type = light.type == Light::Type::Spot          ? engine::LightType::Spot
+           : light.type == Light::Type::Directional ? engine::LightType::Directional
+                                                    : engine::LightType::Point;
   l.position = light.position;
-  l.direction = glm::normalize(light.direction);
+  // A point light has no direction: one it does not read may be anything, even zero.
+  const float length = glm::length(light.direction);
+  l.direction = length > 0.0f ? light.direction / length : glm::vec3(0.0f, 0.0f, -1.0f);
   l.color = light.color;
   l.intensity = light.intensity;
   l.innerConeAngle = light.innerConeAngle;
@@ -53,10 +57,10 @@ engine::Light engineLight(const Light& light) {
   return l;
 }
 
-// Whether a spot's range window (zero from `range` on) ends before the nearest point of the
-// scene's box: then no surface receives its light, direct or bounced.
+// Whether a spot's or point light's range window (zero from `range` on) ends before the nearest
+// point of the scene's box: then no surface receives its light, direct or bounced.
 bool rangeEndsBeforeScene(const Light& light, const engine::Bounds& bounds) {
-  if (light.type != Light::Type::Spot || !(light.range > 0.0f)) return false;
+  if (light.type == Light::Type::Directional || !(light.range > 0.0f)) return false;
   const glm::vec3 nearest = glm::clamp(light.position, bounds.min, bounds.max);
   return glm::length(nearest - light.position) >= light.range;
 }
@@ -128,12 +132,17 @@ struct IndirectLighting::Impl {
   void record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out);
   // Every pass of a frame that bounces light, in order; returns the frame's VSGLs.
   const engine::Buffer& recordPasses(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
-                                     const engine::View& camera, const RsmView& rsmView,
+                                     const engine::View& camera, const std::vector<RsmView>& views,
                                      const engine::Light& light, uint32_t rule);
   // Both outputs cleared to black, visible to the host's next reads like the shaded ones.
   void recordBlackOutputs(VkCommandBuffer cmd);
   // The VSGLs of this frame: sampled with FIS or clustered with k-means.
-  const engine::Buffer& recordVsgls(VkCommandBuffer cmd, const RsmView& rsmView, uint32_t rule);
+  // `count` of them from record `first` on, from one view of the light (`several`: the light has
+  // more than one, whose clusters must not start from each other's k-means centres).
+  void recordVsgls(VkCommandBuffer cmd, const RsmView& rsmView, uint32_t rule, uint32_t first,
+                   uint32_t count, bool several);
+  // The buffer recordVsgls writes with the frame's method.
+  const engine::Buffer& vsglBuffer() const;
   // The environment's conversion (when it changed) and shading into `environmentImages`.
   void recordEnvironment(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera);
 
@@ -246,6 +255,10 @@ FramePlan planFrame(const Settings& s, const Light& light, const engine::Bounds&
         "scene: no surface reflects (SceneGeometry.maxReflectance = 0): no RSM, PDF, VSGL, ISM "
         "or shading pass; black outputs");
   }
+  if (plan.bounce && light.type == Light::Type::Point)
+    plan.reasons.push_back(
+        "light: a point light: six cube-face RSMs (rsmSize^2 each, rendered one after another "
+        "into the same resources), each generating its share of the N VSGLs");
   if (!plan.bounce)
     plan.visibility = plan.glossy = plan.specularLobes = plan.skySkipped = plan.adaptive =
         plan.culled = false;
@@ -280,7 +293,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   gbuffer.specular = borrowImage(g.specular, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
 
   const engine::Light light = engineLight(in.light);
-  const RsmView rsmView = makeRsmView(bounds, light, settings.rsmSize);
+  const std::vector<RsmView> views = makeRsmViews(bounds, light, settings.rsmSize);
   const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
   const uint32_t rule = static_cast<uint32_t>(settings.rule);
 
@@ -294,7 +307,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
     engine::ProfileScope frame(&profiler, cmd, "frame");
     acquireHostImages(cmd, gbuffer);
     if (plan.bounce) {
-      vsgls = &recordPasses(cmd, gbuffer, camera, rsmView, light, rule);
+      vsgls = &recordPasses(cmd, gbuffer, camera, views, light, rule);
       // The outputs, written by compute, become visible to whatever the host does next.
       engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -329,17 +342,30 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
 
 const engine::Buffer& IndirectLighting::Impl::recordPasses(
     VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,
-    const RsmView& rsmView, const engine::Light& light, uint32_t rule) {
+    const std::vector<RsmView>& views, const engine::Light& light, uint32_t rule) {
   const bool brsm = settings.pdf == PdfKind::Brsm;
   // [S3] generates the importance VSGLs with the rule under test and K = 1.
   if (brsm)
     importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
                        &profiler, plan.specularLobes);
-  rsm.record(cmd, *scene, rasterizer, resolve, rsmView, light, &profiler);
-  attributes.record(cmd, rsm.vpls(), rsm.surface(), rsmView, mips, &profiler, plan.specularLobes);
-  if (brsm)
-    brsmPdf->record(cmd, attributes, rsmView, importance->vsgls(), settings.brsm, mips, &profiler);
-  const engine::Buffer* vsgls = &recordVsgls(cmd, rsmView, rule);
+  // One RSM, attribute pyramid and PDF at a time: the views of a point light reuse them in turn,
+  // each generating its share of the N VSGLs into its own range of the buffer
+  // (docs/techniques/point-lights.md).
+  const auto viewCount = static_cast<uint32_t>(views.size());
+  for (uint32_t v = 0, first = 0; v < viewCount; ++v) {
+    const uint32_t count =
+        settings.vsglCount / viewCount + (v < settings.vsglCount % viewCount ? 1u : 0u);
+    if (count == 0) continue;
+    rsm.record(cmd, *scene, rasterizer, resolve, views[v], light, &profiler);
+    attributes.record(cmd, rsm.vpls(), rsm.surface(), views[v], mips, &profiler,
+                      plan.specularLobes);
+    if (brsm)
+      brsmPdf->record(cmd, attributes, views[v], importance->vsgls(), settings.brsm, mips,
+                      &profiler);
+    recordVsgls(cmd, views[v], rule, first, count, viewCount > 1);
+    first += count;
+  }
+  const engine::Buffer* vsgls = &vsglBuffer();
   // The maps are built for the shading's visibility or for the debug view, whichever asks.
   if (plan.visibility || settings.debugVsgl >= 0) {
     if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
@@ -387,24 +413,34 @@ void IndirectLighting::Impl::recordBlackOutputs(VkCommandBuffer cmd) {
                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
-const engine::Buffer& IndirectLighting::Impl::recordVsgls(VkCommandBuffer cmd,
-                                                          const RsmView& rsmView, uint32_t rule) {
-  if (settings.method == VsglMethod::FilteredImportanceSampling ||
-      settings.method == VsglMethod::Vpl) {
+namespace {
+// The methods whose VSGLs VsglGenerator writes (filtered sampling and its point rule).
+bool filtered(VsglMethod method) {
+  return method == VsglMethod::FilteredImportanceSampling || method == VsglMethod::Vpl;
+}
+}  // namespace
+
+void IndirectLighting::Impl::recordVsgls(VkCommandBuffer cmd, const RsmView& rsmView, uint32_t rule,
+                                         uint32_t first, uint32_t count, bool several) {
+  if (filtered(settings.method)) {
     const uint32_t generation = settings.method == VsglMethod::Vpl ? VSGL_RULE_POINT : rule;
-    generator.record(cmd, attributes, rsmView,
-                     {settings.vsglCount, settings.kernelScale, generation}, &profiler);
-    return generator.vsgls();
+    generator.record(cmd, attributes, rsmView, {count, settings.kernelScale, generation, first},
+                     &profiler);
+    return;
   }
   if (!kmeans) kmeans.emplace(ctx, settings.rsmSize, maxCount);
   KmeansPassSettings k;
-  k.clusters = settings.vsglCount;
+  k.clusters = count;
   k.iterations = settings.kmeans.iterations;
   k.space = settings.method == VsglMethod::KmeansImage ? KMEANS_SPACE_IMAGE : KMEANS_SPACE_WORLD;
   k.weighting = settings.kmeans.pdfWeighted ? KMEANS_WEIGHT_PDF : KMEANS_WEIGHT_UNIFORM;
-  k.reuseCentres = settings.kmeans.temporal;
+  k.reuseCentres = settings.kmeans.temporal && !several;
+  k.first = first;
   kmeans->record(cmd, attributes, rsmView, k, &profiler);
-  return kmeans->vsgls();
+}
+
+const engine::Buffer& IndirectLighting::Impl::vsglBuffer() const {
+  return filtered(settings.method) ? generator.vsgls() : kmeans->vsgls();
 }
 
 IndirectLighting::IndirectLighting(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

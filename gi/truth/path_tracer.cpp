@@ -167,14 +167,14 @@ struct PixelState {
   Pcg32 rng{0, 0};  // seeded from (seed, pixel) in pass 1
 };
 
-// Where the bouncing light sends its rays for the light-sampling strategy: a spot's cone
-// (directions uniform in solid angle) or, for a directional light, a disc across the light
-// covering the scene's bounding sphere (origins uniform in area).
+// Where the bouncing light sends its rays for the light-sampling strategy: a spot's cone or a
+// point light's sphere (directions uniform in solid angle) or, for a directional light, a disc
+// across the light covering the scene's bounding sphere (origins uniform in area).
 struct LightSampler {
-  glm::dvec3 position{0.0};  // spot
+  glm::dvec3 position{0.0};  // spot, point
   glm::dvec3 axis{0.0};      // the way light travels
   bool directional = false;
-  double cosOuter = 1.0;   // spot
+  double cosOuter = 1.0;   // spot; -1 for a point light
   glm::dvec3 centre{0.0};  // directional: the disc's centre, upstream of the scene
   double radius = 0.0;     // directional
   double pdf = 0.0;        // per steradian (spot) or per m^2 across the beam (directional)
@@ -189,7 +189,10 @@ struct LightSampler {
       pdf = 1.0 / (kPi * radius * radius);
     } else {
       position = glm::dvec3(light.position);
-      cosOuter = std::cos(static_cast<double>(light.outerConeAngle));
+      // A point light sends rays over the whole sphere: the cone of half angle pi.
+      cosOuter = light.type == engine::LightType::Spot
+                     ? std::cos(static_cast<double>(light.outerConeAngle))
+                     : -1.0;
       pdf = 1.0 / (2.0 * kPi * (1.0 - cosOuter));
     }
   }

@@ -14,10 +14,11 @@
 
 namespace truth {
 
-std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, uint32_t light,
-                         uint32_t rsmSize) {
-  const engine::Light& l = scene.lights.at(light);
-  const gi::RsmView view = gi::makeRsmView(scene, l, rsmSize);
+namespace {
+
+// The lit texels of one view of light `l`, texel indices within the view.
+std::vector<Vpl> rsmViewVpls(const engine::Scene& scene, const EmbreeScene& rays,
+                             const engine::Light& l, const gi::RsmView& view, uint32_t rsmSize) {
   const engine::ReferenceRaster raster =
       engine::rasterizeReference(scene, view.raster, rsmSize, rsmSize);
   const engine::GBufferData surface =
@@ -66,6 +67,21 @@ std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, ui
       v.area = view.texelArea / std::max(cosine, 1e-6);
     }
     vpls.push_back(v);
+  }
+  return vpls;
+}
+
+}  // namespace
+
+std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, uint32_t light,
+                         uint32_t rsmSize) {
+  const engine::Light& l = scene.lights.at(light);
+  std::vector<Vpl> vpls;
+  const std::vector<gi::RsmView> views = gi::makeRsmViews(scene.bounds(), l, rsmSize);
+  for (size_t face = 0; face < views.size(); ++face) {
+    std::vector<Vpl> own = rsmViewVpls(scene, rays, l, views[face], rsmSize);
+    for (Vpl& v : own) v.texel += static_cast<uint32_t>(face * size_t{rsmSize} * rsmSize);
+    vpls.insert(vpls.end(), own.begin(), own.end());
   }
   return vpls;
 }

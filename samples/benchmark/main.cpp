@@ -337,7 +337,8 @@ int run(const Options& o) {
         samples::applyLightChoice(scenes.back(), o.light, false, float(p.width) / float(p.height));
     if (!note.empty()) std::printf("%s\n", note.c_str());
     if (!samples::bouncingLight(scenes.back()))
-      throw engine::Error(name + ": no spot or directional light to bounce");
+      throw engine::Error(name +
+                          ": no light to bounce (--light none; auto, sun or headlight add one)");
   }
   const std::filesystem::path out(o.outDir);
   auto rowFile = [&](const json& identity) { return out / "rows" / (rowKey(identity) + ".json"); };

@@ -193,8 +193,13 @@ int run(const Options& o) {
     const std::string note =
         samples::applyLightChoice(scenes.back(), o.light, false, float(o.width) / float(o.height));
     if (!note.empty()) std::printf("%s\n", note.c_str());
-    if (!samples::bouncingLight(scenes.back()))
-      throw engine::Error(name + ": no spot or directional light to bounce");
+    const engine::Light* light = samples::bouncingLight(scenes.back());
+    if (!light)
+      throw engine::Error(name +
+                          ": no light to bounce (--light none; auto, sun or headlight add one)");
+    // The grouping stage maps each VSGL's kernel onto the texels of one RSM view.
+    if (light->type == engine::LightType::Point)
+      throw engine::Error(name + ": a point light's six RSM views are not in the budget yet");
   }
   const std::filesystem::path out(o.outDir);
   samples::createOutputDirectory(o.outDir);

@@ -15,10 +15,7 @@ void check(const gi::Status& status) {
 }
 
 const engine::Light* bouncingLight(const engine::Scene& scene) {
-  for (const engine::Light& light : scene.lights)
-    if (light.type == engine::LightType::Spot || light.type == engine::LightType::Directional)
-      return &light;
-  return nullptr;
+  return scene.lights.empty() ? nullptr : &scene.lights.front();
 }
 
 float maxReflectance(const engine::Scene& scene) {
@@ -138,8 +135,9 @@ gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& vi
   in.gbuffer = {gbuffer.width,       gbuffer.height,       ref(gbuffer.depth),
                 ref(gbuffer.normal), ref(gbuffer.diffuse), ref(gbuffer.specular)};
   in.camera = {view.view, view.proj};
-  in.light.type =
-      light.type == engine::LightType::Spot ? gi::Light::Type::Spot : gi::Light::Type::Directional;
+  in.light.type = light.type == engine::LightType::Spot          ? gi::Light::Type::Spot
+                  : light.type == engine::LightType::Directional ? gi::Light::Type::Directional
+                                                                 : gi::Light::Type::Point;
   in.light.position = light.position;
   in.light.direction = light.direction;
   in.light.color = light.color;

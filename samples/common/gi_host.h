@@ -20,8 +20,8 @@ namespace samples {
 // Throws engine::Error with the status's message when it failed.
 void check(const gi::Status& status);
 
-// The light the module bounces: the scene's first spot or directional light (the RSM does not
-// support point lights yet), or null.
+// The light the module bounces: the scene's first light, or null (the module bounces one light
+// per frame).
 const engine::Light* bouncingLight(const engine::Scene& scene);
 
 // An upper bound of any surface's reflectance in `scene` (SceneGeometry::maxReflectance): the

@@ -212,7 +212,9 @@ int run(const Options& o) {
       samples::applyLightChoice(base, o.light, false, float(o.width) / float(o.height));
   if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
   const engine::Light* light = samples::bouncingLight(base);
-  if (!light) throw engine::Error(o.scene + ": no spot or directional light to bounce");
+  if (!light)
+    throw engine::Error(o.scene +
+                        ": no light to bounce (--light none; auto, sun or headlight add one)");
   const auto lightIndex = static_cast<uint32_t>(light - base.lights.data());
   std::vector<gi::Settings> settings;
   for (const std::string& word : o.methods) settings.push_back(methodSettings(word, o));

@@ -92,11 +92,12 @@ Options parseOptions(int argc, char** argv) {
   return o;
 }
 
-// The light the RSM renders (the sample renderer's choice): the first spot or directional one.
+// The light the RSM renders (the sample renderer's choice): the first.
 uint32_t bouncingLight(const engine::Scene& scene) {
-  for (uint32_t i = 0; i < scene.lights.size(); ++i)
-    if (scene.lights[i].type != engine::LightType::Point) return i;
-  throw engine::Error("--scene: '" + scene.source + "' has no spot or directional light to bounce");
+  if (scene.lights.empty())
+    throw engine::Error("--scene: '" + scene.source +
+                        "' has no light to bounce (--light none; auto, sun or headlight add one)");
+  return 0;
 }
 
 // RMSE, relative MSE and PSNR of `test` against the reference's indirect light, and a

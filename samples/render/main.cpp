@@ -87,7 +87,7 @@ int run(const render::Options& o) {
   if (o.indirect && (bouncing || environment))
     indirect = samples::createIndirect(ctx, o.gi, o.width, o.height, gpuScene, scene);
   if (o.indirect && !bouncing)
-    std::printf("indirect: %s, the scene has no spot or directional light to bounce\n",
+    std::printf("indirect: %s, the scene has no light to bounce\n",
                 environment ? "environment light only" : "skipped");
   // Without a light to bounce the module still shades the environment: a light of no power
   // makes the planner skip every VSGL pass.

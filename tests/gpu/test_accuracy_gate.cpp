@@ -201,4 +201,28 @@ TEST_F(AccuracyTest, SkippingTheIsmsInAnOpenRoomSavesMoreErrorThanItCosts) {
   EXPECT_LE(std::abs(skip.meanRatio - 1.0), std::abs(ism.meanRatio - 1.0));
 }
 
+// A point light (docs/techniques/point-lights.md) where the Cornell box's spot hangs, 0.1 m
+// under the ceiling, at a quarter of its intensity. It lights every surface of the room and every
+// corner from both sides, the near field at contact lines that the VSGL model handles worst
+// (docs/accuracy.md), so it falls short of the target of the spot's relMSE x 1.2:
+// measured relMSE 0.0294 (N = 64), 0.0135 (N = 512) against the spot's 0.0046, mean ratio 0.917.
+// Bounds with the gate's margins: relMSE + 15 %, |mean - 1| + 0.03, convergence + 0.1.
+TEST_F(AccuracyTest, PointLightAgainstPathTracer) {
+  engine::Scene cornell = engine::makeBuiltinScene("cornell");
+  engine::Light& light = cornell.lights.at(0);
+  light.type = engine::LightType::Point;
+  light.intensity *= 0.25f;
+  prepare(cornell);
+  gi::Settings settings;
+  settings.vsglCount = 64;
+  const Score few = score(settings);
+  settings.vsglCount = 512;
+  const Score many = score(settings);
+  std::printf("cornell, point light: relMSE %.5f (N = 64), %.5f (N = 512); mean ratio %.4f, %.4f\n",
+              few.relativeMse, many.relativeMse, few.meanRatio, many.meanRatio);
+  EXPECT_LE(many.relativeMse, 0.0155);
+  EXPECT_LE(std::abs(many.meanRatio - 1.0), 0.113);
+  EXPECT_LE(many.relativeMse, 0.56 * few.relativeMse) << "more VSGLs must buy accuracy";
+}
+
 }  // namespace

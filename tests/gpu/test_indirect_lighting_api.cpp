@@ -16,6 +16,7 @@
 #include "gi/indirect_lighting.h"
 #include "gi_host.h"
 #include "gpu_fixture.h"
+#include "passes/rsm.h"
 #include "room_shell.h"
 
 namespace {
@@ -307,6 +308,67 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   next.rsmSize = 128;
   EXPECT_FALSE(lighting->setSettings(next));
   EXPECT_EQ(lighting->settings().rsmSize, 64u);
+}
+
+// A point light bounces through six cube faces, one after another into the same resources, each
+// writing its share of the N VSGLs into its own range of the buffer
+// (docs/techniques/point-lights.md): with N = 62, faces 0 and 1 get 11 and the others 10, and
+// every powered VSGL of a face's range lies in that face's frustum (both lobes' means, from the
+// light; 1e-4 of slack on the frustum's sides for fp32), with every method. Each face's range
+// holds powered VSGLs, and the light reaches the image.
+TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
+  engine::Light point = scene_.lights.at(0);
+  point.type = engine::LightType::Point;
+  point.position = glm::vec3(0.0f, 1.0f, 0.0f);
+  const std::vector<gi::RsmView> faces = gi::makeRsmViews(scene_.bounds(), point, 64);
+  for (gi::VsglMethod method : {gi::VsglMethod::FilteredImportanceSampling, gi::VsglMethod::Vpl,
+                                gi::VsglMethod::KmeansImage, gi::VsglMethod::KmeansWorld}) {
+    SCOPED_TRACE("method " + std::to_string(int(method)));
+    gi::Settings settings = smallSettings();
+    settings.method = method;
+    settings.vsglCount = 62;
+    gi::Status status;
+    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+    ASSERT_TRUE(lighting) << status.message;
+    ASSERT_TRUE(lighting->setScene(geometry()));
+    gi::FrameInput in = input();
+    in.light = samples::frameInput(*gbuffer_, view_, point).light;
+    ASSERT_EQ(in.light.type, gi::Light::Type::Point);
+    gi::FrameOutput out;
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, in, &out)); });
+    for (engine::Image* image :
+         {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+      image->setLayout(out.gbufferLayout);
+    ASSERT_EQ(out.vsglCount, 62u);
+    const std::vector<gpu::Vsgl> vsgls = samples::readVsgls(ctx(), out);
+    auto inFrustum = [](const gi::RsmView& face, const gpu::VsglLobe& lobe) {
+      const glm::dvec4 clip =
+          glm::dmat4(face.raster.matrix) *
+          glm::dvec4(glm::dvec3(lobe.meanVariance) - glm::dvec3(face.origin), 1.0);
+      const double slack = 1e-4 * clip.w;
+      return clip.w > 0.0 && std::abs(clip.x) <= clip.w + slack &&
+             std::abs(clip.y) <= clip.w + slack;
+    };
+    for (uint32_t f = 0, first = 0; f < faces.size(); ++f) {
+      const uint32_t count = f < 2 ? 11u : 10u;
+      uint32_t powered = 0;
+      for (uint32_t i = first; i < first + count; ++i) {
+        const gpu::Vsgl& v = vsgls.at(i);
+        if (v.diffuse.power.a > 0.0f) {
+          ++powered;
+          EXPECT_TRUE(inFrustum(faces[f], v.diffuse)) << "record " << i << " of face " << f;
+        }
+        if (v.specular.power.a > 0.0f)
+          EXPECT_TRUE(inFrustum(faces[f], v.specular)) << "record " << i << " of face " << f;
+      }
+      EXPECT_GT(powered, 0u) << "face " << f;
+      first += count;
+    }
+    double light = 0.0;
+    for (const glm::vec4& c : readOutput(out.indirectDiffuse)) light += c.r + c.g + c.b;
+    EXPECT_GT(light, 0.0);
+    EXPECT_TRUE(std::isfinite(light));
+  }
 }
 
 // The effect planner (issue 9): with no light that can bounce, because the light has no power or

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include "engine/builtin_scenes.h"
 #include "engine/gbuffer_reference.h"
@@ -198,6 +199,67 @@ TEST_F(Rsm, RangeWindowScalesTheFluxAsTheDirectLight) {
   }
   EXPECT_GT(cut, ref.size() / 20) << "some of the room must lie past the range";
   EXPECT_GT(windowed, ref.size() / 20) << "some of it inside the window's fall-off";
+}
+
+// A point light's six cube faces (docs/techniques/point-lights.md) tile the sphere of
+// directions: every direction falls inside exactly one face's frustum (10^5 random directions;
+// none lands on an edge), and the faces' texel solid angles add up to 4 pi at the same second
+// order as one frustum's (TexelSolidAnglesSumToTheFrustum: 6 x 1.3e-5 relative at 128 texels).
+TEST(RsmView, PointLightFacesTileTheSphere) {
+  engine::Scene scene = engine::makeBuiltinScene("cornell");
+  engine::Light light = scene.lights.at(0);
+  light.type = engine::LightType::Point;
+  const uint32_t size = 128;
+  const std::vector<gi::RsmView> faces = gi::makeRsmViews(scene.bounds(), light, size);
+  ASSERT_EQ(faces.size(), gi::kCubeFaces);
+  double solidAngle = 0.0;
+  for (const gi::RsmView& f : faces) {
+    EXPECT_TRUE(f.perspective);
+    EXPECT_FLOAT_EQ(f.tanHalfAngle, 1.0f);
+    EXPECT_EQ(f.origin, light.position);
+    solidAngle += gi::rsmSolidAngleSum(size, 0.25 * M_PI);
+  }
+  EXPECT_NEAR(solidAngle, 4.0 * M_PI, 4.0 * M_PI * 6.0 * 0.25 / (double(size) * size));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss;
+  for (int i = 0; i < 100000; ++i) {
+    const glm::dvec3 d = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng)));
+    int inside = 0;
+    for (const gi::RsmView& f : faces) {
+      const glm::dvec4 clip = glm::dmat4(f.raster.matrix) * glm::dvec4(d, 1.0);
+      inside += clip.w > 0.0 && std::abs(clip.x) < clip.w && std::abs(clip.y) < clip.w;
+    }
+    ASSERT_EQ(inside, 1) << "direction " << d.x << ", " << d.y << ", " << d.z;
+  }
+}
+
+// Each face of a point light's RSM is a spot's RSM without a cone: the GPU against the twin on
+// every face, with the tolerances of FluxMatchesReferenceOnBuiltinScenes, a light in the middle
+// of the Cornell box (every face sees walls; the open front's face sees little).
+TEST_F(Rsm, PointLightFacesMatchTheReference) {
+  engine::Scene scene = engine::makeBuiltinScene("cornell");
+  engine::Light light = scene.lights.at(0);
+  light.type = engine::LightType::Point;
+  light.position = glm::vec3(0.0f, 1.0f, 0.0f);
+  const uint32_t size = 64;
+  size_t lit = 0;
+  for (const gi::RsmView& view : gi::makeRsmViews(scene.bounds(), light, size)) {
+    GpuRsm gpu = renderRsm(ctx(), scene, light, view, size);
+    const auto ref = gi::rsmFluxReference(gpu.surface, view, gi::lightFluxSource(light));
+    const double floor = 1e-6 * maxLuminance(ref);
+    for (size_t i = 0; i < ref.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_LE(std::abs(gpu.diffuse[i][k] - ref[i].diffuseFlux[k]),
+                  1e-5 * ref[i].diffuseFlux[k] + floor)
+            << "texel " << i;
+        ASSERT_LE(std::abs(gpu.specular[i][k] - ref[i].specularFlux[k]),
+                  1e-5 * ref[i].specularFlux[k] + floor)
+            << "texel " << i;
+      }
+      lit += ref[i].lit > 0.0;
+    }
+  }
+  EXPECT_GT(lit, 4u * size * size) << "most of the six faces see the room";
 }
 
 TEST(RsmView, RefusesPointLightsAndOverwideSpots) {

@@ -104,17 +104,18 @@ struct SceneGeometry {
   bool canOcclude = true;
 };
 
-// The light that bounces: a spot or a directional light in KHR_lights_punctual units.
+// The light that bounces: a spot, directional or point light in KHR_lights_punctual units. A
+// point light's RSM is the six faces of a cube, each rsmSize^2 (docs/techniques/point-lights.md).
 struct Light {
-  enum class Type : uint32_t { Spot, Directional };
+  enum class Type : uint32_t { Spot, Directional, Point };
   Type type = Type::Spot;
-  glm::vec3 position{0.0f};                // world, metres (spot)
-  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit, the way light travels
+  glm::vec3 position{0.0f};                // world, metres (spot, point)
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit, the way light travels (spot, directional)
   glm::vec3 color{1.0f};                   // linear RGB
-  float intensity = 1.0f;                  // spot: W/sr (candela / 683); directional: W/m^2
+  float intensity = 1.0f;  // spot, point: W/sr (candela / 683); directional: W/m^2
   float innerConeAngle = 0.0f;             // radians, [0, outer)
   float outerConeAngle = 0.785398f;        // radians, (0, 1.3]
-  // Spot: metres, 0 = none. KHR_lights_punctual's window clamp(1 - (d / range)^4, 0, 1) at
+  // Spot and point: metres, 0 = none. KHR_lights_punctual's window clamp(1 - (d / range)^4, 0, 1) at
   // distance d scales the light that reaches the RSM, so the bounce ends where the host's direct
   // light does. Ignored for a directional light (KHR has no range for it).
   float range = 0.0f;

@@ -1,5 +1,6 @@
 #include "passes/kmeans.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "engine/commands.h"
@@ -64,8 +65,9 @@ void KmeansClustering::adoptCentres(uint32_t clusters, uint32_t space) {
 void KmeansClustering::record(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
                               const KmeansPassSettings& settings, engine::GpuProfiler* profiler) {
   const uint32_t k = settings.clusters;
-  if (k < 1 || k > maxClusters_)
-    throw engine::Error("k-means: cluster count " + std::to_string(k) + " outside [1, " +
+  if (k < 1 || k > maxClusters_ - std::min(settings.first, maxClusters_))
+    throw engine::Error("k-means: cluster count " + std::to_string(k) + " from record " +
+                        std::to_string(settings.first) + " outside [1, " +
                         std::to_string(maxClusters_) + "]");
   if (settings.iterations < 1 || settings.iterations > kMaxIterations)
     throw engine::Error("k-means: iterations " + std::to_string(settings.iterations) +
@@ -128,11 +130,13 @@ void KmeansClustering::record(VkCommandBuffer cmd, VsglAttributes& attributes, c
       bounds_.dispatch(cmd, {Binding::storage(keys_), Binding::storage(ranges_)}, push,
                        engine::groupCount(texels, KMEANS_BOUNDS_GROUP));
       engine::computeBarrier(cmd);
-      sum_.dispatch(cmd,
-                    {pyramid(0), pyramid(1), pyramid(2), pyramid(3), pyramid(4), pyramid(5),
-                     Binding::storage(centres_), Binding::storage(values_),
-                     Binding::storage(ranges_), Binding::storage(vsgls_)},
-                    push, k);
+      sum_.dispatch(
+          cmd,
+          {pyramid(0), pyramid(1), pyramid(2), pyramid(3), pyramid(4), pyramid(5),
+           Binding::storage(centres_), Binding::storage(values_), Binding::storage(ranges_),
+           Binding::storage(vsgls_, VkDeviceSize{settings.first} * sizeof(gpu::Vsgl),
+                            VkDeviceSize{k} * sizeof(gpu::Vsgl))},
+          push, k);
       engine::computeBarrier(cmd);
     }
   }

@@ -21,6 +21,9 @@ struct KmeansPassSettings {
   // Start from the previous record's centres when it clustered the same K in the same space
   // (temporally coherent, [PKD12]); otherwise, and when false, from fresh PDF-proportional seeds.
   bool reuseCentres = true;
+  // The record index of the first cluster's VSGL: the views of a point light write their
+  // clusters one after another into the same buffer. first + clusters <= maxClusters.
+  uint32_t first = 0;
 };
 
 class KmeansClustering {

@@ -1,6 +1,7 @@
 #include "passes/rsm.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "engine/commands.h"
 #include "passes/ggx_albedo_table.h"
@@ -20,6 +21,43 @@ RsmView makeRsmView(const engine::Scene& scene, const engine::Light& light, uint
   return makeRsmView(scene.bounds(), light, size);
 }
 
+namespace {
+
+// A square perspective frustum of half angle `halfAngle` from `position` along unit `axis`.
+RsmView perspectiveView(const engine::Bounds& bounds, glm::vec3 position, glm::vec3 axis,
+                        float halfAngle, uint32_t size) {
+  RsmView r;
+  r.axis = axis;
+  r.perspective = true;
+  r.origin = position;
+  r.tanHalfAngle = std::tan(halfAngle);
+  const float texelSide = 2.0f * r.tanHalfAngle / static_cast<float>(size);
+  r.texelArea = texelSide * texelSide;
+  const engine::DepthRange range = engine::enclosingDepthRange(bounds, position);
+  const glm::mat4 proj = engine::perspectiveVulkan(2.0f * halfAngle, 1.0f, range.znear, range.zfar);
+  const glm::mat4 rotation = engine::lookAlong(glm::vec3(0.0f), axis, engine::upVectorFor(axis));
+  const glm::mat4 view = engine::lookAlong(position, axis, engine::upVectorFor(axis));
+  r.view = engine::makeView(view, proj, size, size);
+  r.raster = {proj * rotation, position};
+  r.invViewProjRelative = glm::inverse(proj * rotation);
+  return r;
+}
+
+constexpr glm::vec3 kCubeFaceAxes[kCubeFaces] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                                 {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+
+}  // namespace
+
+std::vector<RsmView> makeRsmViews(const engine::Bounds& bounds, const engine::Light& light,
+                                  uint32_t size) {
+  if (light.type != engine::LightType::Point) return {makeRsmView(bounds, light, size)};
+  std::vector<RsmView> faces;
+  for (const glm::vec3& axis : kCubeFaceAxes)
+    faces.push_back(
+        perspectiveView(bounds, light.position, axis, 0.25f * std::numbers::pi_v<float>, size));
+  return faces;
+}
+
 RsmView makeRsmView(const engine::Bounds& bounds, const engine::Light& light, uint32_t size) {
   RsmView r;
   r.axis = glm::normalize(light.direction);
@@ -29,19 +67,7 @@ RsmView makeRsmView(const engine::Bounds& bounds, const engine::Light& light, ui
       throw Error("light '" + light.name + "': spot cone " + std::to_string(light.outerConeAngle) +
                   " rad is wider than the RSM supports (" + std::to_string(kMaxRsmHalfAngle) +
                   " rad)");
-    r.perspective = true;
-    r.origin = light.position;
-    r.tanHalfAngle = std::tan(light.outerConeAngle);
-    float texelSide = 2.0f * r.tanHalfAngle / texels;
-    r.texelArea = texelSide * texelSide;
-    engine::DepthRange range = engine::enclosingDepthRange(bounds, light.position);
-    glm::mat4 proj =
-        engine::perspectiveVulkan(2.0f * light.outerConeAngle, 1.0f, range.znear, range.zfar);
-    glm::mat4 rotation = engine::lookAlong(glm::vec3(0.0f), r.axis, engine::upVectorFor(r.axis));
-    glm::mat4 view = engine::lookAlong(light.position, r.axis, engine::upVectorFor(r.axis));
-    r.view = engine::makeView(view, proj, size, size);
-    r.raster = {proj * rotation, light.position};
-    r.invViewProjRelative = glm::inverse(proj * rotation);
+    return perspectiveView(bounds, light.position, r.axis, light.outerConeAngle, size);
   } else if (light.type == engine::LightType::Directional) {
     engine::EnclosingOrtho o = engine::enclosingOrthographic(bounds, r.axis);
     r.perspective = false;
@@ -54,7 +80,7 @@ RsmView makeRsmView(const engine::Bounds& bounds, const engine::Light& light, ui
     r.raster = {o.proj * rotation, o.eye};
     r.invViewProjRelative = glm::inverse(o.proj * rotation);
   } else {
-    throw Error("light '" + light.name + "': point lights are not supported by the RSM yet");
+    throw Error("light '" + light.name + "': a point light has six RSM views (makeRsmViews)");
   }
   return r;
 }
@@ -64,8 +90,8 @@ FluxSource lightFluxSource(const engine::Light& light) {
   source.radiance = light.color * light.intensity;
   source.falloff =
       light.type == engine::LightType::Spot ? engine::spotFalloff(light) : glm::vec2(0.0f, 1.0f);
-  // KHR_lights_punctual: a directional light has no range.
-  source.range = light.type == engine::LightType::Spot ? light.range : 0.0f;
+  // KHR_lights_punctual: a directional light has no range. A point light has no falloff.
+  source.range = light.type == engine::LightType::Directional ? 0.0f : light.range;
   return source;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "engine/gbuffer.h"
 #include "engine/rasterizer.h"
@@ -14,7 +15,8 @@ namespace gi {
 
 // How the RSM sees its light. Spot lights: a square perspective frustum whose half angle is the
 // outer cone (corner texels outside the cone get zero power); directional lights: an
-// orthographic view enclosing the scene. Point lights need six views and are not supported yet.
+// orthographic view enclosing the scene; point lights: six, the faces of a cube around the light
+// (makeRsmViews, docs/techniques/point-lights.md).
 struct RsmView {
   engine::View view;  // world -> clip; width = height = size
   // The rasterizer's transform: (world - origin) -> clip, from the projection and the light's
@@ -28,11 +30,19 @@ struct RsmView {
   float texelArea = 0.0f;     // spot: on the unit-distance plane; directional: m^2
 };
 
-// Throws engine::Error for point lights and for spots wider than kMaxRsmHalfAngle.
+// Throws engine::Error for point lights (makeRsmViews) and for spots wider than
+// kMaxRsmHalfAngle.
 RsmView makeRsmView(const engine::Scene& scene, const engine::Light& light, uint32_t size);
 // The same from the scene's bounds (all the scene the view needs: its depth range and, for a
 // directional light, the orthographic box).
 RsmView makeRsmView(const engine::Bounds& bounds, const engine::Light& light, uint32_t size);
+
+// Every view of `light`: one for a spot or directional light; for a point light the six 90 degree
+// faces of a cube centred on it, looking along +x, -x, +y, -y, +z, -z (kCubeFaceAxes), which
+// tile the sphere of directions with no texel centre on two faces.
+std::vector<RsmView> makeRsmViews(const engine::Bounds& bounds, const engine::Light& light,
+                                  uint32_t size);
+constexpr uint32_t kCubeFaces = 6;
 
 // A single perspective view cannot hold a cone much wider than this (texel density at its rim
 // falls as cos^3); wider spot lights are refused rather than sampled badly.

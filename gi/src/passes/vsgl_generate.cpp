@@ -1,5 +1,6 @@
 #include "passes/vsgl_generate.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "engine/commands.h"
@@ -26,8 +27,9 @@ VsglGenerator::VsglGenerator(engine::Context& ctx, uint32_t maxCount, std::strin
 
 void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
                            const VsglSettings& settings, engine::GpuProfiler* profiler) {
-  if (settings.count < 1 || settings.count > maxCount_)
-    throw engine::Error("VSGL count " + std::to_string(settings.count) + " outside [1, " +
+  if (settings.count < 1 || settings.count > maxCount_ - std::min(settings.first, maxCount_))
+    throw engine::Error("VSGL count " + std::to_string(settings.count) + " from record " +
+                        std::to_string(settings.first) + " outside [1, " +
                         std::to_string(maxCount_) + "]");
   if (!(settings.kernelScale >= 1.0f))
     throw engine::Error("VSGL kernel scale K = " + std::to_string(settings.kernelScale) +
@@ -55,7 +57,8 @@ void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, cons
       {Binding::sampled(attributes.pyramid(0), s), Binding::sampled(attributes.pyramid(1), s),
        Binding::sampled(attributes.pyramid(2), s), Binding::sampled(attributes.pyramid(3), s),
        Binding::sampled(attributes.pyramid(4), s), Binding::sampled(attributes.pyramid(5), s),
-       Binding::storage(vsgls_)},
+       Binding::storage(vsgls_, VkDeviceSize{settings.first} * sizeof(gpu::Vsgl),
+                        VkDeviceSize{settings.count} * sizeof(gpu::Vsgl))},
       push, engine::groupCount(settings.count, VSGL_GENERATE_GROUP));
   engine::computeBarrier(cmd);
 }

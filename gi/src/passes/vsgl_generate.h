@@ -14,6 +14,9 @@ struct VsglSettings {
   // VSGL_RULE_TOK15, VSGL_RULE_MODIFIED (+~0 cost) or VSGL_RULE_POINT (the VPL baseline's
   // point lights; K is not read)
   uint32_t rule = VSGL_RULE_MODIFIED;
+  // The record index of the first VSGL written: the views of a point light write their VSGLs
+  // one after another into the same buffer. first + count <= maxCount.
+  uint32_t first = 0;
 };
 
 class VsglGenerator {
