@@ -12,6 +12,7 @@
 
 #include "engine/commands.h"
 #include "engine/rasterizer.h"
+#include "light_validation.h"
 #include "passes/adaptive_shading.h"
 #include "passes/brsm_pdf.h"
 #include "passes/env_fis.h"
@@ -278,9 +279,8 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
       throw engine::Error(
           "FrameInput.gbuffer: every image needs its VkImage, VkImageView and current layout "
           "(not UNDEFINED)");
-  if (!(in.light.range >= 0.0f) || !std::isfinite(in.light.range))
-    throw engine::Error("FrameInput.light.range: " + std::to_string(in.light.range) +
-                        " m must be finite and >= 0 (0 = no range)");
+  if (std::string bad = validateLight(in.light, "FrameInput.light"); !bad.empty())
+    throw engine::Error(bad);
   if (!scene) throw engine::Error("IndirectLighting::record: setScene was not called");
   if (settings.pdf == PdfKind::Brsm && !importance) createBrsm();
 

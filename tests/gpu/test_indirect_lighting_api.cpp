@@ -5,6 +5,7 @@
 // the test on any validation message). Only gi/include and the engine (the "host") are used.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "engine/builtin_scenes.h"
@@ -16,6 +17,7 @@
 #include "gi/indirect_lighting.h"
 #include "gi_host.h"
 #include "gpu_fixture.h"
+#include "light_validation.h"
 #include "passes/rsm.h"
 #include "room_shell.h"
 
@@ -268,13 +270,40 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
     EXPECT_FALSE(s);
     EXPECT_NE(s.message.find("setScene"), std::string::npos) << s.message;
   });
-  gi::FrameInput badRange = input();
-  badRange.light.range = std::numeric_limits<float>::infinity();
-  ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    gi::Status s = lighting->record(cmd, badRange, &out);
-    EXPECT_FALSE(s);
-    EXPECT_EQ(s.message, "FrameInput.light.range: inf m must be finite and >= 0 (0 = no range)");
-  });
+  // A bad light: one line naming the field, and nothing recorded.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::pair<std::function<void(gi::Light&)>, std::string> badLights[] = {
+      {[](gi::Light& l) { l.range = std::numeric_limits<float>::infinity(); },
+       "FrameInput.light.range: inf m must be finite and >= 0 (0 = no range)"},
+      {[&](gi::Light& l) { l.position.y = nan; },
+       "FrameInput.light.position: (0, nan, 0.6) is not finite"},
+      {[](gi::Light& l) { l.direction = glm::vec3(0.0f); },
+       "FrameInput.light.direction: (0, 0, 0) must be finite and non-zero"},
+      {[](gi::Light& l) { l.color.g = -1.0f; },
+       "FrameInput.light.color: (1, -1, 1) must be finite and >= 0"},
+      {[&](gi::Light& l) { l.intensity = nan; },
+       "FrameInput.light.intensity: nan must be finite and >= 0"},
+      {[](gi::Light& l) { l.innerConeAngle = 0.7f; },
+       "FrameInput.light.innerConeAngle: 0.7 rad is outside [0, outerConeAngle = 0.6)"},
+      {[](gi::Light& l) { l.outerConeAngle = 1.5f; },
+       "FrameInput.light.outerConeAngle: 1.5 rad is outside (0, 1.3] (the RSM's widest cone)"},
+      {[](gi::Light& l) { l.type = gi::Light::Type(7); },
+       "FrameInput.light.type: 7 is none of Spot, Directional, Point"}};
+  for (const auto& [edit, message] : badLights) {
+    gi::FrameInput bad = input();
+    edit(bad.light);
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      gi::Status s = lighting->record(cmd, bad, &out);
+      EXPECT_FALSE(s);
+      EXPECT_EQ(s.message, message);
+    });
+  }
+  // A point light reads neither direction nor cones.
+  gi::FrameInput point = input();
+  point.light.type = gi::Light::Type::Point;
+  point.light.direction = glm::vec3(0.0f);
+  point.light.outerConeAngle = 3.0f;
+  EXPECT_EQ(gi::validateLight(point.light, "FrameInput.light"), "");
   gi::SceneGeometry empty = geometry();
   empty.triangleCount = 0;
   EXPECT_FALSE(lighting->setScene(empty));
