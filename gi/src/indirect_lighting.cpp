@@ -20,6 +20,7 @@
 #include "passes/env_sg.h"
 #include "passes/ism.h"
 #include "passes/kmeans.h"
+#include "passes/vsgl_allocation.h"
 #include "passes/vsgl_shade.h"
 #include "shared/vsgl_shade.h"
 
@@ -38,6 +39,11 @@ bool sameCreationFields(const Settings& a, const Settings& b) {
          a.ism.pointsPerVsgl == b.ism.pointsPerVsgl && a.ism.depthBias == b.ism.depthBias &&
          a.ism.slopeBias == b.ism.slopeBias && a.ism.centreOffset == b.ism.centreOffset &&
          a.ism.pcf == b.ism.pcf && a.environment.mapSize == b.environment.mapSize;
+}
+
+// The methods whose VSGLs VsglGenerator writes (filtered sampling and its point rule).
+bool filtered(VsglMethod method) {
+  return method == VsglMethod::FilteredImportanceSampling || method == VsglMethod::Vpl;
 }
 
 engine::Light engineLight(const Light& light) {
@@ -116,6 +122,7 @@ struct IndirectLighting::Impl {
         mips(ctx),
         rsm(ctx, s.rsmSize),
         attributes(ctx, s.rsmSize),
+        allocation(ctx),
         generator(ctx, maxCount),
         ism(ctx, s.ism, maxCount),
         shade(ctx),
@@ -144,6 +151,13 @@ struct IndirectLighting::Impl {
                    uint32_t count, bool several);
   // The buffer recordVsgls writes with the frame's method.
   const engine::Buffer& vsglBuffer() const;
+  // View v's attribute pyramids.
+  VsglAttributes& attributesOf(uint32_t v) {
+    if (v == 0) return attributes;
+    while (moreAttributes.size() < v)
+      moreAttributes.push_back(std::make_unique<VsglAttributes>(ctx, settings.rsmSize));
+    return *moreAttributes[v - 1];
+  }
   // The environment's conversion (when it changed) and shading into `environmentImages`.
   void recordEnvironment(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera);
 
@@ -161,7 +175,11 @@ struct IndirectLighting::Impl {
   engine::GBufferResolve resolve;
   MipPyramid mips;
   ReflectiveShadowMap rsm;
-  VsglAttributes attributes;
+  VsglAttributes attributes;  // of view 0
+  // Of views 1.. (a point light's other faces, the other lights), created as frames need them:
+  // every view's pyramids live until the VSGLs are shared among the views.
+  std::vector<std::unique_ptr<VsglAttributes>> moreAttributes;
+  VsglAllocation allocation;
   VsglGenerator generator;
   std::optional<KmeansClustering> kmeans;     // created with the first k-means frame
   std::optional<ImportanceVsgls> importance;  // BRSM stage A, created with the first Brsm frame
@@ -300,6 +318,9 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   plan = planFrame(settings, in.light, bounds, maxReflectance, maxSpecular, canOcclude,
                    environmentSet, environmentSet && environmentMap->pending());
 
+  // Every view's pyramids exist before the deferred setup that gives new images their layout.
+  if (views.size() > 1 && filtered(settings.method))
+    attributesOf(static_cast<uint32_t>(views.size() - 1));
   ctx.recordDeferredSetup(cmd);
   profiler.beginFrame(cmd);
   const engine::Buffer* vsgls = nullptr;  // this frame's, from filtered sampling or k-means
@@ -337,6 +358,8 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   // No bounce: no VSGLs this frame (the buffer is still a valid handle).
   out.vsgls = (vsgls ? *vsgls : generator.vsgls()).handle();
   out.vsglCount = vsgls ? settings.vsglCount : 0;
+  out.vsglViews = allocation.ranges().handle();
+  out.viewCount = vsgls ? static_cast<uint32_t>(views.size()) : 0;
   out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
 }
 
@@ -348,22 +371,40 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
   if (brsm)
     importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
                        &profiler, plan.specularLobes);
-  // One RSM, attribute pyramid and PDF at a time: the views of a point light reuse them in turn,
-  // each generating its share of the N VSGLs into its own range of the buffer
+  // One RSM at a time, each view with its own attribute pyramids and PDF. With several views
+  // (a point light's faces) filtered sampling shares the N VSGLs among them on the GPU by their
+  // importance-weighted power, each writing its range of the buffer; k-means, whose passes size
+  // their dispatches with K on the host, gives each view N / views
   // (docs/techniques/point-lights.md).
   const auto viewCount = static_cast<uint32_t>(views.size());
+  const bool shared = viewCount > 1 && filtered(settings.method);
+  std::vector<glm::uvec2> hostRanges;
   for (uint32_t v = 0, first = 0; v < viewCount; ++v) {
     const uint32_t count =
         settings.vsglCount / viewCount + (v < settings.vsglCount % viewCount ? 1u : 0u);
-    if (count == 0) continue;
+    if (!shared) hostRanges.emplace_back(first, count);
+    if (count == 0 && !shared) continue;
+    VsglAttributes& pyramids = attributesOf(shared ? v : 0);
     rsm.record(cmd, *scene, rasterizer, resolve, views[v], light, &profiler);
-    attributes.record(cmd, rsm.vpls(), rsm.surface(), views[v], mips, &profiler,
-                      plan.specularLobes);
+    pyramids.record(cmd, rsm.vpls(), rsm.surface(), views[v], mips, &profiler, plan.specularLobes);
     if (brsm)
-      brsmPdf->record(cmd, attributes, views[v], importance->vsgls(), settings.brsm, mips,
-                      &profiler);
-    recordVsgls(cmd, views[v], rule, first, count, viewCount > 1);
-    first += count;
+      brsmPdf->record(cmd, pyramids, views[v], importance->vsgls(), settings.brsm, mips, &profiler);
+    if (shared) {
+      allocation.recordWeight(cmd, v, pyramids, brsm ? &brsmPdf->cells() : nullptr);
+    } else {
+      recordVsgls(cmd, views[v], rule, first, count, viewCount > 1);
+      first += count;
+    }
+  }
+  if (!shared) allocation.recordRanges(cmd, hostRanges);
+  if (shared) {
+    allocation.recordAllocate(cmd, viewCount, settings.vsglCount,
+                              brsm ? settings.brsm.fluxMix : 1.0f, &profiler);
+    const uint32_t generation = settings.method == VsglMethod::Vpl ? VSGL_RULE_POINT : rule;
+    for (uint32_t v = 0; v < viewCount; ++v)
+      generator.recordRanged(cmd, attributesOf(v), views[v],
+                             {settings.vsglCount, settings.kernelScale, generation},
+                             allocation.ranges(), v, &profiler);
   }
   const engine::Buffer* vsgls = &vsglBuffer();
   // The maps are built for the shading's visibility or for the debug view, whichever asks.
@@ -412,13 +453,6 @@ void IndirectLighting::Impl::recordBlackOutputs(VkCommandBuffer cmd) {
                         VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
-
-namespace {
-// The methods whose VSGLs VsglGenerator writes (filtered sampling and its point rule).
-bool filtered(VsglMethod method) {
-  return method == VsglMethod::FilteredImportanceSampling || method == VsglMethod::Vpl;
-}
-}  // namespace
 
 void IndirectLighting::Impl::recordVsgls(VkCommandBuffer cmd, const RsmView& rsmView, uint32_t rule,
                                          uint32_t first, uint32_t count, bool several) {

@@ -202,6 +202,15 @@ std::vector<gpu::Vsgl> readVsgls(engine::Context& ctx, const gi::FrameOutput& ou
   return buffer.readbackAs<gpu::Vsgl>(ctx);
 }
 
+std::vector<glm::uvec2> readVsglViews(engine::Context& ctx, const gi::FrameOutput& output) {
+  engine::Buffer buffer = engine::Buffer::borrow(
+      output.vsglViews, VkDeviceSize{output.viewCount} * sizeof(gpu::VsglViewRange));
+  std::vector<glm::uvec2> ranges;
+  for (const gpu::VsglViewRange& r : buffer.readbackAs<gpu::VsglViewRange>(ctx))
+    ranges.emplace_back(r.range.x, r.range.y);
+  return ranges;
+}
+
 std::vector<float> readR32f(engine::Context& ctx, const gi::ImageRef& ref, uint32_t width,
                             uint32_t height, const char* what) {
   if (!ref.image) throw engine::Error(std::string("internal: the module wrote no ") + what);

@@ -14,6 +14,7 @@
 #include "engine/view.h"
 #include "gi/indirect_lighting.h"
 #include "shared/vsgl.h"
+#include "shared/vsgl_allocation.h"
 
 namespace samples {
 
@@ -73,6 +74,8 @@ Indirect readEnvironment(engine::Context& ctx, const gi::FrameOutput& output, ui
 // Diffuse + glossy per pixel, in double (what the benchmark and the flicker captures score).
 std::vector<glm::dvec3> indirectSum(const Indirect& indirect);
 std::vector<gpu::Vsgl> readVsgls(engine::Context& ctx, const gi::FrameOutput& output);
+// FrameOutput::vsglViews: (first record, count) of each RSM view.
+std::vector<glm::uvec2> readVsglViews(engine::Context& ctx, const gi::FrameOutput& output);
 // A single-channel R32_SFLOAT output of the module (FrameOutput::debugVisibility or
 // shadingLevels), read back; `what` names it in the error when the module wrote none.
 std::vector<float> readR32f(engine::Context& ctx, const gi::ImageRef& ref, uint32_t width,

@@ -9,6 +9,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/vsgl.h"
+#include "shared/vsgl_allocation.h"
 #include "shared/vsgl_attributes.h"
 #include "shared/vsgl_generate.h"
 #include "common/vsgl_lobes.glsl"
@@ -17,7 +18,11 @@ layout(local_size_x = VSGL_GENERATE_GROUP) in;
 
 #include "common/attribute_pyramids.glsl"
 layout(std430, binding = VSGL_ATTR_COUNT) writeonly buffer Vsgls { Vsgl vsgls[]; };
+layout(std430, binding = VSGL_ATTR_COUNT + 1) readonly buffer Ranges { VsglViewRange ranges[]; };
 layout(push_constant) uniform Push { VsglGeneratePush pc; };
+
+// N of this view: the push constant's, or its share of the frame's (vsgl_allocate.comp).
+uint viewCount() { return pc.ranged != 0u ? ranges[pc.view].range.y : pc.count; }
 
 #include "common/lattice_warp.glsl"
 
@@ -49,9 +54,9 @@ float kernelMass(vec2 x, float level, float pTop) {
 
 float modifiedFisLevel(vec2 x, float pTop) {
   float top = float(pc.topLevel);
-  float target = pc.kernelScale / float(pc.count);
-  if (kernelMass(x, 0.0, pTop) >= target) return 0.0;  // a spike: VSGLs share the texel
-  if (pc.kernelScale >= float(pc.count)) return top;   // no kernel is large enough
+  float target = pc.kernelScale / float(viewCount());
+  if (kernelMass(x, 0.0, pTop) >= target) return 0.0;   // a spike: VSGLs share the texel
+  if (pc.kernelScale >= float(viewCount())) return top;  // no kernel is large enough
   float lo = 0.0, hi = top;
   for (int step = 0; step < VSGL_BISECTION_STEPS; ++step) {
     float mid = 0.5 * (lo + hi);
@@ -65,7 +70,7 @@ float tok15Level(float density) {
   float top = float(pc.topLevel);
   if (!(density > 0.0)) return top;
   float m = float(pc.size) * float(pc.size);
-  return clamp(0.5 * log2(pc.kernelScale * m / (float(pc.count) * density)), 0.0, top);
+  return clamp(0.5 * log2(pc.kernelScale * m / (float(viewCount()) * density)), 0.0, top);
 }
 
 // VSGL_RULE_POINT: the area of the surface patch one texel covers at offset y from the origin
@@ -83,8 +88,10 @@ float texelPatchArea(vec3 y, vec3 n) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= pc.count) return;
-  vec2 u = fibonacciPoint(i, pc.count);
+  uint count = viewCount();
+  if (i >= count) return;
+  uint first = pc.ranged != 0u ? ranges[pc.view].range.x : 0u;
+  vec2 u = fibonacciPoint(i, count);
   ivec2 node = warpToTexel(u, int(pc.topLevel));
   float size = float(pc.size);
   bool point = pc.rule == VSGL_RULE_POINT;
@@ -103,8 +110,8 @@ void main() {
   // a VPL is the texel's own value over N p, the estimator of importance sampling.
   float m = size * size;
   float scale = !(pTop > 0.0) ? 0.0
-              : modified || point ? (filtered > 0.0 ? m / (float(pc.count) * filtered) : 0.0)
-                                  : m / max(float(pc.count) * density, 1.0);
+              : modified || point ? (filtered > 0.0 ? m / (float(count) * filtered) : 0.0)
+                                  : m / max(float(count) * density, 1.0);
   Vsgl v;
   v.diffuse = buildVsglLobe(scale * trilinear(diffusePower, x, level),
                         scale * trilinear(diffusePosition, x, level),
@@ -128,5 +135,5 @@ void main() {
   float weight = bilinear(diffusePower, x, 0).a + bilinear(specularPower, x, 0).a;
   vec3 sums = bilinear(diffusePosition, x, 0).xyz + bilinear(specularPosition, x, 0).xyz;
   v.visibilityPoint = weight > 0.0 ? vec4(pc.origin.xyz + sums / weight, 1.0) : vec4(0.0);
-  vsgls[i] = v;
+  vsgls[first + i] = v;
 }

@@ -19,8 +19,10 @@ struct VsglGeneratePush {
   float kernelScale;  // K (paper: 1); larger = blurrier, temporally steadier kernels
   // VSGL_RULE_POINT only: 1 = spot (perspective RSM), 0 = directional (orthographic).
   uint perspective;
-  uint pad1;
-  uint pad2;
+  // 1: this view's first record and count are ranges[view] of the allocation
+  // (shared/vsgl_allocation.h), and `count` only bounds them; 0: records [0, count).
+  uint ranged;
+  uint view;
 };
 
 SHARED_END

@@ -339,12 +339,14 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   EXPECT_EQ(lighting->settings().rsmSize, 64u);
 }
 
-// A point light bounces through six cube faces, one after another into the same resources, each
-// writing its share of the N VSGLs into its own range of the buffer
-// (docs/techniques/point-lights.md): with N = 62, faces 0 and 1 get 11 and the others 10, and
-// every powered VSGL of a face's range lies in that face's frustum (both lobes' means, from the
-// light; 1e-4 of slack on the frustum's sides for fp32), with every method. Each face's range
-// holds powered VSGLs, and the light reaches the image.
+// A point light bounces through six cube faces, each with its own attribute pyramids and PDF
+// and its own range of the VSGL buffer (docs/techniques/point-lights.md). FrameOutput::vsglViews
+// gives the ranges: contiguous, N in all. Filtered sampling shares them by the faces'
+// importance-weighted power, so the face towards the box's open front (+z, mostly sky) gets
+// fewer than the one towards the back wall (-z); k-means gives each N / 6 (faces 0 and 1 the
+// remainder). Every powered VSGL of a face's range lies in that face's frustum (both lobes'
+// means, from the light; 1e-4 of slack on the frustum's sides for fp32), each face has one, and
+// the light reaches the image.
 TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
   engine::Light point = scene_.lights.at(0);
   point.type = engine::LightType::Point;
@@ -369,7 +371,18 @@ TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
          {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
       image->setLayout(out.gbufferLayout);
     ASSERT_EQ(out.vsglCount, 62u);
+    ASSERT_EQ(out.viewCount, 6u);
     const std::vector<gpu::Vsgl> vsgls = samples::readVsgls(ctx(), out);
+    const std::vector<glm::uvec2> ranges = samples::readVsglViews(ctx(), out);
+    const bool kmeans =
+        method == gi::VsglMethod::KmeansImage || method == gi::VsglMethod::KmeansWorld;
+    for (uint32_t f = 0, first = 0; f < 6; ++f) {
+      EXPECT_EQ(ranges[f].x, first) << "face " << f;
+      if (kmeans) EXPECT_EQ(ranges[f].y, f < 2 ? 11u : 10u) << "face " << f;
+      first += ranges[f].y;
+      if (f == 5) EXPECT_EQ(first, 62u);
+    }
+    if (!kmeans) EXPECT_LT(ranges[4].y, ranges[5].y) << "the open front's face";
     auto inFrustum = [](const gi::RsmView& face, const gpu::VsglLobe& lobe) {
       const glm::dvec4 clip =
           glm::dmat4(face.raster.matrix) *
@@ -378,10 +391,9 @@ TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
       return clip.w > 0.0 && std::abs(clip.x) <= clip.w + slack &&
              std::abs(clip.y) <= clip.w + slack;
     };
-    for (uint32_t f = 0, first = 0; f < faces.size(); ++f) {
-      const uint32_t count = f < 2 ? 11u : 10u;
+    for (uint32_t f = 0; f < faces.size(); ++f) {
       uint32_t powered = 0;
-      for (uint32_t i = first; i < first + count; ++i) {
+      for (uint32_t i = ranges[f].x; i < ranges[f].x + ranges[f].y; ++i) {
         const gpu::Vsgl& v = vsgls.at(i);
         if (v.diffuse.power.a > 0.0f) {
           ++powered;
@@ -391,7 +403,6 @@ TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
           EXPECT_TRUE(inFrustum(faces[f], v.specular)) << "record " << i << " of face " << f;
       }
       EXPECT_GT(powered, 0u) << "face " << f;
-      first += count;
     }
     double light = 0.0;
     for (const glm::vec4& c : readOutput(out.indirectDiffuse)) light += c.r + c.g + c.b;

@@ -112,11 +112,11 @@ struct Light {
   glm::vec3 position{0.0f};                // world, metres (spot, point)
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit, the way light travels (spot, directional)
   glm::vec3 color{1.0f};                   // linear RGB
-  float intensity = 1.0f;  // spot, point: W/sr (candela / 683); directional: W/m^2
+  float intensity = 1.0f;                  // spot, point: W/sr (candela / 683); directional: W/m^2
   float innerConeAngle = 0.0f;             // radians, [0, outer)
   float outerConeAngle = 0.785398f;        // radians, (0, 1.3]
-  // Spot and point: metres, 0 = none. KHR_lights_punctual's window clamp(1 - (d / range)^4, 0, 1) at
-  // distance d scales the light that reaches the RSM, so the bounce ends where the host's direct
+  // Spot and point: metres, 0 = none. KHR_lights_punctual's window clamp(1 - (d / range)^4, 0, 1)
+  // at distance d scales the light that reaches the RSM, so the bounce ends where the host's direct
   // light does. Ignored for a directional light (KHR has no range for it).
   float range = 0.0f;
 };
@@ -165,6 +165,11 @@ struct FrameOutput {
   // The VSGL records of this frame (gpu::Vsgl, shaders/shared/vsgl.h), for debug views.
   VkBuffer vsgls = VK_NULL_HANDLE;
   uint32_t vsglCount = 0;
+  // Which records came from which RSM view (gpu::VsglViewRange, shaders/shared/
+  // vsgl_allocation.h: x = first record, y = count), one per view in order: one for a spot or
+  // directional light, six for a point light's cube faces (+x, -x, +y, -y, +z, -z).
+  VkBuffer vsglViews = VK_NULL_HANDLE;
+  uint32_t viewCount = 0;
   // Layout the module left the host's G-buffer images in.
   VkImageLayout gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
 };

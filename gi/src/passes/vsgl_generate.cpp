@@ -4,6 +4,7 @@
 #include <bit>
 
 #include "engine/commands.h"
+#include "shared/vsgl_allocation.h"
 #include "shared/vsgl_generate.h"
 #include "spirv/vsgl_generate.h"
 
@@ -18,15 +19,33 @@ VsglGenerator::VsglGenerator(engine::Context& ctx, uint32_t maxCount, std::strin
             std::vector<VkDescriptorType> types(VSGL_ATTR_COUNT,
                                                 VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
             types.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+            types.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
             return types;
           }(),
           sizeof(gpu::VsglGeneratePush)),
       sampler_(ctx, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE),
       vsgls_(ctx, VkDeviceSize{maxCount} * sizeof(gpu::Vsgl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-             engine::MemoryUsage::GpuOnly) {}
+             engine::MemoryUsage::GpuOnly),
+      noRanges_(ctx, sizeof(gpu::VsglViewRange), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                engine::MemoryUsage::GpuOnly) {}
 
 void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
                            const VsglSettings& settings, engine::GpuProfiler* profiler) {
+  dispatch(cmd, attributes, view, settings, nullptr, 0, profiler);
+}
+
+void VsglGenerator::recordRanged(VkCommandBuffer cmd, VsglAttributes& attributes,
+                                 const RsmView& view, const VsglSettings& settings,
+                                 const engine::Buffer& ranges, uint32_t rangeIndex,
+                                 engine::GpuProfiler* profiler) {
+  VsglSettings bound = settings;
+  bound.first = 0;
+  dispatch(cmd, attributes, view, bound, &ranges, rangeIndex, profiler);
+}
+
+void VsglGenerator::dispatch(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
+                             const VsglSettings& settings, const engine::Buffer* ranges,
+                             uint32_t rangeIndex, engine::GpuProfiler* profiler) {
   if (settings.count < 1 || settings.count > maxCount_ - std::min(settings.first, maxCount_))
     throw engine::Error("VSGL count " + std::to_string(settings.count) + " from record " +
                         std::to_string(settings.first) + " outside [1, " +
@@ -50,6 +69,8 @@ void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, cons
   push.kernelScale = settings.kernelScale;
   push.texelPatch = glm::vec4(view.axis, view.texelArea);
   push.perspective = view.perspective ? 1u : 0u;
+  push.ranged = ranges ? 1u : 0u;
+  push.view = rangeIndex;
   using engine::Binding;
   VkSampler s = sampler_.handle();
   program_.dispatch(
@@ -57,8 +78,10 @@ void VsglGenerator::record(VkCommandBuffer cmd, VsglAttributes& attributes, cons
       {Binding::sampled(attributes.pyramid(0), s), Binding::sampled(attributes.pyramid(1), s),
        Binding::sampled(attributes.pyramid(2), s), Binding::sampled(attributes.pyramid(3), s),
        Binding::sampled(attributes.pyramid(4), s), Binding::sampled(attributes.pyramid(5), s),
-       Binding::storage(vsgls_, VkDeviceSize{settings.first} * sizeof(gpu::Vsgl),
-                        VkDeviceSize{settings.count} * sizeof(gpu::Vsgl))},
+       ranges ? Binding::storage(vsgls_)
+              : Binding::storage(vsgls_, VkDeviceSize{settings.first} * sizeof(gpu::Vsgl),
+                                 VkDeviceSize{settings.count} * sizeof(gpu::Vsgl)),
+       Binding::storage(ranges ? *ranges : noRanges_)},
       push, engine::groupCount(settings.count, VSGL_GENERATE_GROUP));
   engine::computeBarrier(cmd);
 }

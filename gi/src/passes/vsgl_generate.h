@@ -27,15 +27,26 @@ class VsglGenerator {
 
   void record(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
               const VsglSettings& settings, engine::GpuProfiler* profiler = nullptr);
+  // The same with this view's first record and count read on the GPU from `ranges`
+  // (gpu::VsglViewRange[], VsglAllocation) at `rangeIndex`; settings.count (the frame's N)
+  // bounds the count, settings.first is not read.
+  void recordRanged(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
+                    const VsglSettings& settings, const engine::Buffer& ranges, uint32_t rangeIndex,
+                    engine::GpuProfiler* profiler = nullptr);
 
   const engine::Buffer& vsgls() const { return vsgls_; }  // gpu::Vsgl[maxCount]
 
  private:
+  void dispatch(VkCommandBuffer cmd, VsglAttributes& attributes, const RsmView& view,
+                const VsglSettings& settings, const engine::Buffer* ranges, uint32_t rangeIndex,
+                engine::GpuProfiler* profiler);
+
   uint32_t maxCount_;
   std::string passPrefix_;
   engine::ComputeProgram program_;
   engine::Sampler sampler_;  // unused by texelFetch, but a combined image sampler needs one
   engine::Buffer vsgls_;
+  engine::Buffer noRanges_;  // bound when the count is the push constant's (never read)
 };
 
 }  // namespace gi
