@@ -110,6 +110,12 @@ Status failure(const std::string& message) {
 
 }  // namespace
 
+// One RSM view and the light it sees.
+struct LightView {
+  RsmView view;
+  engine::Light light;
+};
+
 struct IndirectLighting::Impl {
   Impl(const DeviceHandles& device, const Settings& s, uint32_t w, uint32_t h)
       : ctx({device.instance, device.physicalDevice, device.device, device.queueFamily}),
@@ -140,8 +146,8 @@ struct IndirectLighting::Impl {
   void record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out);
   // Every pass of a frame that bounces light, in order; returns the frame's VSGLs.
   const engine::Buffer& recordPasses(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
-                                     const engine::View& camera, const std::vector<RsmView>& views,
-                                     const engine::Light& light, uint32_t rule);
+                                     const engine::View& camera,
+                                     const std::vector<LightView>& views, uint32_t rule);
   // Both outputs cleared to black, visible to the host's next reads like the shaded ones.
   void recordBlackOutputs(VkCommandBuffer cmd);
   // The VSGLs of this frame: sampled with FIS or clustered with k-means.
@@ -207,9 +213,9 @@ namespace {
 
 // The effect planner (docs/integration.md, "The effect planner"): which passes this frame needs.
 // Each decision leaves out only work whose result is exactly zero or never read.
-FramePlan planFrame(const Settings& s, const Light& light, const engine::Bounds& bounds,
-                    float maxReflectance, float maxSpecular, bool canOcclude, bool environment,
-                    bool environmentChanged) {
+FramePlan planFrame(const Settings& s, const std::vector<Light>& lights,
+                    const engine::Bounds& bounds, float maxReflectance, float maxSpecular,
+                    bool canOcclude, bool environment, bool environmentChanged) {
   FramePlan plan;
   plan.environment = environment;
   plan.environmentConverted = environment && environmentChanged;
@@ -257,27 +263,42 @@ FramePlan planFrame(const Settings& s, const Light& light, const engine::Bounds&
     plan.reasons.push_back("environment: none set (setEnvironment): no environment passes");
   else if (!environmentChanged)
     plan.reasons.push_back("environment: unchanged since its conversion: not converted again");
-  const float power = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
-  if (s.planner.skipWithoutBounce && !(power > 0.0f)) {
+  // Per light: one without power, or whose range ends before the scene, reflects exactly nothing.
+  const bool one = lights.size() == 1;
+  const std::string whole = ": no RSM, PDF, VSGL, ISM or shading pass; black outputs";
+  for (uint32_t i = 0; i < lights.size(); ++i) {
+    const Light& light = lights[i];
+    const float power = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+    const std::string name = one ? "light: " : "light " + std::to_string(i) + ": ";
+    const std::string field =
+        one ? "FrameInput.lights[0]" : "FrameInput.lights[" + std::to_string(i) + "]";
+    if (s.planner.skipWithoutBounce && !(power > 0.0f))
+      plan.reasons.push_back(name + "no power (intensity x colour = 0)" +
+                             (one ? whole : ": no RSM"));
+    else if (s.planner.skipWithoutBounce && rangeEndsBeforeScene(light, bounds))
+      plan.reasons.push_back(name + "its range ends before the scene's bounds (" + field +
+                             ".range)" + (one ? whole : ": no RSM"));
+    else
+      plan.lights.push_back(i);
+  }
+  if (lights.empty()) {
     plan.bounce = false;
-    plan.reasons.push_back(
-        "light: no power (intensity x colour = 0): no RSM, PDF, VSGL, ISM or shading pass; "
-        "black outputs");
-  } else if (s.planner.skipWithoutBounce && rangeEndsBeforeScene(light, bounds)) {
+    plan.reasons.push_back("lights: none in FrameInput.lights" + whole);
+  } else if (plan.lights.empty()) {
     plan.bounce = false;
-    plan.reasons.push_back(
-        "light: its range ends before the scene's bounds (FrameInput.light.range): no RSM, PDF, "
-        "VSGL, ISM or shading pass; black outputs");
+    if (!one) plan.reasons.push_back("lights: none can bounce" + whole);
   } else if (s.planner.skipWithoutBounce && !(maxReflectance > 0.0f)) {
     plan.bounce = false;
     plan.reasons.push_back(
         "scene: no surface reflects (SceneGeometry.maxReflectance = 0): no RSM, PDF, VSGL, ISM "
         "or shading pass; black outputs");
   }
-  if (plan.bounce && light.type == Light::Type::Point)
-    plan.reasons.push_back(
-        "light: a point light: six cube-face RSMs (rsmSize^2 each, rendered one after another "
-        "into the same resources), each generating its share of the N VSGLs");
+  for (uint32_t i : plan.lights)
+    if (plan.bounce && lights[i].type == Light::Type::Point)
+      plan.reasons.push_back(std::string(one ? "light: " : "light " + std::to_string(i) + ": ") +
+                             "a point light: six cube-face RSMs of rsmSize^2, rendered one after "
+                             "another, sharing the N VSGLs with the other views by their power");
+  if (!plan.bounce) plan.lights.clear();
   if (!plan.bounce)
     plan.visibility = plan.glossy = plan.specularLobes = plan.skySkipped = plan.adaptive =
         plan.culled = false;
@@ -297,8 +318,14 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
       throw engine::Error(
           "FrameInput.gbuffer: every image needs its VkImage, VkImageView and current layout "
           "(not UNDEFINED)");
-  if (std::string bad = validateLight(in.light, "FrameInput.light"); !bad.empty())
-    throw engine::Error(bad);
+  if (in.lights.size() > kMaxLights)
+    throw engine::Error("FrameInput.lights: " + std::to_string(in.lights.size()) +
+                        " lights, more than kMaxLights = " + std::to_string(kMaxLights));
+  for (size_t i = 0; i < in.lights.size(); ++i)
+    if (std::string bad =
+            validateLight(in.lights[i], "FrameInput.lights[" + std::to_string(i) + "]");
+        !bad.empty())
+      throw engine::Error(bad);
   if (!scene) throw engine::Error("IndirectLighting::record: setScene was not called");
   if (settings.pdf == PdfKind::Brsm && !importance) createBrsm();
 
@@ -310,13 +337,18 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   gbuffer.diffuse = borrowImage(g.diffuse, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
   gbuffer.specular = borrowImage(g.specular, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
 
-  const engine::Light light = engineLight(in.light);
-  const std::vector<RsmView> views = makeRsmViews(bounds, light, settings.rsmSize);
   const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
   const uint32_t rule = static_cast<uint32_t>(settings.rule);
 
-  plan = planFrame(settings, in.light, bounds, maxReflectance, maxSpecular, canOcclude,
+  plan = planFrame(settings, in.lights, bounds, maxReflectance, maxSpecular, canOcclude,
                    environmentSet, environmentSet && environmentMap->pending());
+  // The RSM views of the lights that bounce, in order, each with its light.
+  std::vector<LightView> views;
+  for (uint32_t i : plan.lights) {
+    const engine::Light light = engineLight(in.lights[i]);
+    for (const RsmView& view : makeRsmViews(bounds, light, settings.rsmSize))
+      views.push_back({view, light});
+  }
 
   // Every view's pyramids exist before the deferred setup that gives new images their layout.
   if (views.size() > 1 && filtered(settings.method))
@@ -328,7 +360,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
     engine::ProfileScope frame(&profiler, cmd, "frame");
     acquireHostImages(cmd, gbuffer);
     if (plan.bounce) {
-      vsgls = &recordPasses(cmd, gbuffer, camera, views, light, rule);
+      vsgls = &recordPasses(cmd, gbuffer, camera, views, rule);
       // The outputs, written by compute, become visible to whatever the host does next.
       engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -363,9 +395,11 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
 }
 
-const engine::Buffer& IndirectLighting::Impl::recordPasses(
-    VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,
-    const std::vector<RsmView>& views, const engine::Light& light, uint32_t rule) {
+const engine::Buffer& IndirectLighting::Impl::recordPasses(VkCommandBuffer cmd,
+                                                           engine::GBuffer& gbuffer,
+                                                           const engine::View& camera,
+                                                           const std::vector<LightView>& views,
+                                                           uint32_t rule) {
   const bool brsm = settings.pdf == PdfKind::Brsm;
   // [S3] generates the importance VSGLs with the rule under test and K = 1.
   if (brsm)
@@ -385,14 +419,15 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
     if (!shared) hostRanges.emplace_back(first, count);
     if (count == 0 && !shared) continue;
     VsglAttributes& pyramids = attributesOf(shared ? v : 0);
-    rsm.record(cmd, *scene, rasterizer, resolve, views[v], light, &profiler);
-    pyramids.record(cmd, rsm.vpls(), rsm.surface(), views[v], mips, &profiler, plan.specularLobes);
+    const RsmView& view = views[v].view;
+    rsm.record(cmd, *scene, rasterizer, resolve, view, views[v].light, &profiler);
+    pyramids.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler, plan.specularLobes);
     if (brsm)
-      brsmPdf->record(cmd, pyramids, views[v], importance->vsgls(), settings.brsm, mips, &profiler);
+      brsmPdf->record(cmd, pyramids, view, importance->vsgls(), settings.brsm, mips, &profiler);
     if (shared) {
       allocation.recordWeight(cmd, v, pyramids, brsm ? &brsmPdf->cells() : nullptr);
     } else {
-      recordVsgls(cmd, views[v], rule, first, count, viewCount > 1);
+      recordVsgls(cmd, view, rule, first, count, viewCount > 1);
       first += count;
     }
   }
@@ -402,7 +437,7 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
                               brsm ? settings.brsm.fluxMix : 1.0f, &profiler);
     const uint32_t generation = settings.method == VsglMethod::Vpl ? VSGL_RULE_POINT : rule;
     for (uint32_t v = 0; v < viewCount; ++v)
-      generator.recordRanged(cmd, attributesOf(v), views[v],
+      generator.recordRanged(cmd, attributesOf(v), views[v].view,
                              {settings.vsglCount, settings.kernelScale, generation},
                              allocation.ranges(), v, &profiler);
   }

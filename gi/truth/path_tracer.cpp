@@ -149,15 +149,20 @@ struct Lobes {
 };
 
 // Per-pixel running sums of the indirect estimate.
+// Strategy (c) at x for one light: the mirror planes whose reflection of the light x can see,
+// each picked with probability share / their count, in place of (a)'s direction.
+struct MirrorStrategy {
+  std::vector<MirrorLobe> lobes;
+  double share = 0.0;
+};
+
 struct PixelState {
   bool background = true;
   ShadingPoint x{};
   glm::dvec3 view{0.0};
   Lobes lobes{engine::GBufferSample{}, glm::dvec3(0.0, 0.0, 1.0)};  // set with x in pass 1
-  // Strategy (c): the mirror planes whose reflection of the light x can see, each picked with
-  // probability pMirror / their count, in place of (a)'s direction.
-  std::vector<MirrorLobe> mirrors;
-  double pMirror = 0.0;
+  // Strategy (c) for each bouncing light (MirrorStrategy), set with x in pass 1.
+  std::vector<struct MirrorStrategy> mirrors;
   glm::dvec3 direct{0.0};
   glm::dvec3 diffuseSum{0.0};
   glm::dvec3 glossySum{0.0};
@@ -242,41 +247,39 @@ class Tracer {
         mirrorPlanes_(findMirrorPlanes(scene)),
         minHeight_(1e-6 * glm::length(glm::dvec3(scene.bounds().max - scene.bounds().min))) {}
 
-  // Strategy (c)'s lobes at x (mirrorLobe says which planes qualify); none when `mirrors` is off.
-  void setMirrors(PixelState& px, bool mirrors) const {
-    px.mirrors.clear();
+  // Strategy (c)'s lobes at x for this light (mirrorLobe says which planes qualify); none when
+  // `mirrors` is off.
+  MirrorStrategy mirrorsAt(const PixelState& px, bool mirrors) const {
+    MirrorStrategy m;
     for (size_t k = 0; mirrors && k < mirrorPlanes_.planes.size(); ++k)
       if (const std::optional<MirrorLobe> lobe = mirrorLobe(
               mirrorPlanes_, static_cast<int32_t>(k), px.x.position, mirrorLight_, minHeight_))
-        px.mirrors.push_back(*lobe);
-    px.pMirror = px.mirrors.empty() ? 0.0 : kMirrorShare;
+        m.lobes.push_back(*lobe);
+    m.share = m.lobes.empty() ? 0.0 : kMirrorShare;
+    return m;
   }
 
-  void sample(PixelState& px) const {
+  struct Contribution {
+    glm::dvec3 diffuse{0.0};
+    glm::dvec3 glossy{0.0};
+  };
+
+  // One estimate of this light's one-bounce radiance at x: (a) or (c), and (b).
+  Contribution estimate(PixelState& px, const MirrorStrategy& m) const {
     const Lobes& lobes = px.lobes;
     Pcg32& rng = px.rng;
     const double u[5] = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-    Contribution c = receiverStrategy(px, lobes, u[0], u[1], u[2]);
-    const Contribution b = lightStrategy(px, lobes, u[3], u[4]);
+    Contribution c = receiverStrategy(px, m, lobes, u[0], u[1], u[2]);
+    const Contribution b = lightStrategy(px, m, lobes, u[3], u[4]);
     c.diffuse += b.diffuse;
     c.glossy += b.glossy;
-    px.diffuseSum += c.diffuse;
-    px.glossySum += c.glossy;
-    const double y = gi::luminance709(c.diffuse + c.glossy);
-    px.luminanceSum += y;
-    px.luminanceSquares += y * y;
-    ++px.samples;
+    return c;
   }
 
  private:
   // The share of strategy (c) in the mixture with (a) where x has mirror lobes (on the checker
   // at 160x90 the samples per pixel varied by 10 % between shares of 0.3 and 0.7).
   static constexpr double kMirrorShare = 0.5;
-
-  struct Contribution {
-    glm::dvec3 diffuse{0.0};
-    glm::dvec3 glossy{0.0};
-  };
 
   // x's lobes times the radiance `incoming` from world direction `dir`, times `scale`.
   static Contribution atX(const PixelState& px, glm::dvec3 dir, glm::dvec3 incoming, double scale) {
@@ -292,15 +295,14 @@ class Tracer {
 
   // The density per m^2 with which the mixture of (a) and (c) reaches y on `triangle` along the
   // world direction `dir` from x; `geometry` = |cos_y| / d^2 turns (a)'s solid angle into area.
-  static double receiverAreaPdf(const PixelState& px, const Lobes& lobes, glm::dvec3 dir,
+  static double receiverAreaPdf(const MirrorStrategy& m, const Lobes& lobes, glm::dvec3 dir,
                                 uint32_t triangle, glm::dvec3 y, double geometry,
                                 const MirrorPlanes& planes) {
-    double area = (1.0 - px.pMirror) * lobes.pdf(lobes.frame.toLocal(dir)) * geometry;
+    double area = (1.0 - m.share) * lobes.pdf(lobes.frame.toLocal(dir)) * geometry;
     const int32_t plane = planes.ofTriangle[triangle];
     if (plane < 0) return area;
-    for (const MirrorLobe& lobe : px.mirrors)
-      if (lobe.plane == plane)
-        area += px.pMirror / static_cast<double>(px.mirrors.size()) * lobe.pdf(y);
+    for (const MirrorLobe& lobe : m.lobes)
+      if (lobe.plane == plane) area += m.share / static_cast<double>(m.lobes.size()) * lobe.pdf(y);
     return area;
   }
 
@@ -310,16 +312,16 @@ class Tracer {
     glm::dvec3 dir;
     int32_t plane;
   };
-  ReceiverSample receiverDirection(const PixelState& px, const Lobes& lobes, double u0, double u1,
-                                   double u2) const {
-    if (u0 < px.pMirror) {
-      const size_t count = px.mirrors.size();
+  ReceiverSample receiverDirection(const PixelState& px, const MirrorStrategy& m,
+                                   const Lobes& lobes, double u0, double u1, double u2) const {
+    if (u0 < m.share) {
+      const size_t count = m.lobes.size();
       const size_t k =
-          std::min(count - 1, static_cast<size_t>(u0 / px.pMirror * static_cast<double>(count)));
-      const MirrorLobe& lobe = px.mirrors[k];
+          std::min(count - 1, static_cast<size_t>(u0 / m.share * static_cast<double>(count)));
+      const MirrorLobe& lobe = m.lobes[k];
       return {glm::normalize(lobe.sample(u1, u2) - px.x.position), lobe.plane};
     }
-    u0 = (u0 - px.pMirror) / (1.0 - px.pMirror);
+    u0 = (u0 - m.share) / (1.0 - m.share);
     glm::dvec3 l;
     if (u0 < lobes.pSpecular) {
       const glm::dvec3 h = sampleVisibleNormal(lobes.v, lobes.alpha, u1, u2);
@@ -331,9 +333,9 @@ class Tracer {
     return {lobes.frame.toWorld(l), -1};
   }
 
-  Contribution receiverStrategy(const PixelState& px, const Lobes& lobes, double u0, double u1,
-                                double u2) const {
-    const auto [dir, plane] = receiverDirection(px, lobes, u0, u1, u2);
+  Contribution receiverStrategy(const PixelState& px, const MirrorStrategy& m, const Lobes& lobes,
+                                double u0, double u1, double u2) const {
+    const auto [dir, plane] = receiverDirection(px, m, lobes, u0, u1, u2);
     // Directions below x's shading normal carry nothing to x; into its own triangle they would
     // leak through it.
     if (glm::dot(px.x.surface.normal, dir) <= 0.0 || glm::dot(px.x.geometricNormal, dir) <= 0.0)
@@ -348,13 +350,14 @@ class Tracer {
     // The two sides' densities of y per m^2.
     const double geometry = std::abs(glm::dot(y.geometricNormal, dir)) / (hit.t * hit.t);
     const double areaX =
-        receiverAreaPdf(px, lobes, dir, hit.triangle, y.position, geometry, mirrorPlanes_);
+        receiverAreaPdf(m, lobes, dir, hit.triangle, y.position, geometry, mirrorPlanes_);
     const double areaB = lightSampler_.areaPdf(y.position, y.geometricNormal);
     if (areaX <= 0.0) return {};
     return atX(px, dir, r.diffuse + r.glossy, geometry / (areaX + areaB));
   }
 
-  Contribution lightStrategy(const PixelState& px, const Lobes& lobes, double u1, double u2) const {
+  Contribution lightStrategy(const PixelState& px, const MirrorStrategy& m, const Lobes& lobes,
+                             double u1, double u2) const {
     const auto [origin, dir] = lightSampler_.sample(u1, u2);
     const RayHit hit = rays_.intersect(origin, dir);
     if (!hit.hit) return {};
@@ -383,7 +386,7 @@ class Tracer {
     const double areaB = lightSampler_.areaPdf(y.position, y.geometricNormal);
     const double geometry = std::abs(glm::dot(y.geometricNormal, w)) / d2;
     const double areaX =
-        receiverAreaPdf(px, lobes, -w, hit.triangle, y.position, geometry, mirrorPlanes_);
+        receiverAreaPdf(m, lobes, -w, hit.triangle, y.position, geometry, mirrorPlanes_);
     if (areaB <= 0.0) return {};
     return atX(px, -w, radiance, geometry / (areaX + areaB));
   }
@@ -410,20 +413,42 @@ double standardError(const PixelState& px) {
 PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
                          const engine::View& view, uint32_t bouncingLight,
                          const PathTraceSettings& settings) {
-  if (bouncingLight >= scene.lights.size())
-    throw engine::Error("pathTrace: light " + std::to_string(bouncingLight) + " of " +
-                        std::to_string(scene.lights.size()));
+  return pathTrace(scene, rays, view, std::span<const uint32_t>(&bouncingLight, 1), settings);
+}
+
+PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
+                         const engine::View& view, std::span<const uint32_t> bouncingLights,
+                         const PathTraceSettings& settings) {
+  for (uint32_t l : bouncingLights)
+    if (l >= scene.lights.size())
+      throw engine::Error("pathTrace: light " + std::to_string(l) + " of " +
+                          std::to_string(scene.lights.size()));
   const auto start = std::chrono::steady_clock::now();
   engine::DirectLightSettings lightSettings;
   lightSettings.shadows = false;  // exact shadow rays instead of maps
   const std::vector<gpu::GpuLight> lights = engine::buildLightSetup(scene, lightSettings).lights;
-  const Tracer tracer(scene, rays, lights[bouncingLight], scene.lights[bouncingLight]);
+  std::vector<Tracer> tracers;
+  for (uint32_t l : bouncingLights) tracers.emplace_back(scene, rays, lights[l], scene.lights[l]);
   const unsigned threads = threadCount(settings.threads);
   const size_t pixels = size_t{view.width} * view.height;
   std::vector<PixelState> state(pixels);
 
+  // One sample is the sum of every bouncing light's estimate (each with its own strategies).
   auto run = [&](PixelState& px, uint32_t count) {
-    for (uint32_t k = 0; k < count; ++k) tracer.sample(px);
+    for (uint32_t k = 0; k < count; ++k) {
+      glm::dvec3 diffuse(0.0), glossy(0.0);
+      for (size_t t = 0; t < tracers.size(); ++t) {
+        const Tracer::Contribution c = tracers[t].estimate(px, px.mirrors[t]);
+        diffuse += c.diffuse;
+        glossy += c.glossy;
+      }
+      px.diffuseSum += diffuse;
+      px.glossySum += glossy;
+      const double y = gi::luminance709(diffuse + glossy);
+      px.luminanceSum += y;
+      px.luminanceSquares += y * y;
+      ++px.samples;
+    }
   };
 
   // Pass 1: the visible point, the direct light, a pilot of minSamples of the indirect light.
@@ -437,7 +462,8 @@ PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
     px.x = shadingPoint(scene, hit, ray.origin, ray.dir);
     px.view = -ray.dir;
     px.lobes = Lobes(px.x.surface, px.view);
-    tracer.setMirrors(px, settings.mirrorSampling);
+    for (const Tracer& tracer : tracers)
+      px.mirrors.push_back(tracer.mirrorsAt(px, settings.mirrorSampling));
     for (const gpu::GpuLight& light : lights) {
       const Reflected r = reflectLight(rays, light, px.x, px.view, settings.directShadows);
       px.direct += r.diffuse + r.glossy;
@@ -543,8 +569,18 @@ namespace truth {
 PathTraceImage cachedPathTrace(const ReferenceCache& cache, const engine::Scene& scene,
                                const engine::View& view, uint32_t bouncingLight,
                                const PathTraceSettings& settings, bool* fromCache) {
+  return cachedPathTrace(cache, scene, view, std::span<const uint32_t>(&bouncingLight, 1), settings,
+                         fromCache);
+}
+
+PathTraceImage cachedPathTrace(const ReferenceCache& cache, const engine::Scene& scene,
+                               const engine::View& view, std::span<const uint32_t> bouncingLights,
+                               const PathTraceSettings& settings, bool* fromCache) {
   CacheKey key;
-  key.add(scene).add(view).add(bouncingLight);
+  key.add(scene).add(view);
+  // One light keys as before several could bounce (the stored references stay valid).
+  for (uint32_t l : bouncingLights) key.add(l);
+  if (bouncingLights.size() != 1) key.add(uint32_t(bouncingLights.size()) | 0x80000000u);
   key.add(settings.relativeError).add(settings.floorFraction).add(settings.minSamples);
   key.add(settings.maxSamples).add(settings.seed).add(settings.directShadows);
   key.add(settings.mirrorSampling);
@@ -576,7 +612,7 @@ PathTraceImage cachedPathTrace(const ReferenceCache& cache, const engine::Scene&
   }
   if (fromCache) *fromCache = false;
   const EmbreeScene rays(scene);
-  PathTraceImage image = pathTrace(scene, rays, view, bouncingLight, settings);
+  PathTraceImage image = pathTrace(scene, rays, view, bouncingLights, settings);
   CachedImage c;
   c.width = image.width;
   c.height = image.height;

@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <span>
 #include <vector>
 
 #include "embree_scene.h"
@@ -69,12 +70,20 @@ struct PathTraceImage {
 PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
                          const engine::View& view, uint32_t bouncingLight,
                          const PathTraceSettings& settings);
+// The same with the light of every index in `bouncingLights` bouncing: diffuse and glossy sum
+// their one-bounce light (each light with its own three strategies in every sample).
+PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
+                         const engine::View& view, std::span<const uint32_t> bouncingLights,
+                         const PathTraceSettings& settings);
 
 // pathTrace through `cache`: the stored image when one exists for these inputs (scene content,
 // view, light, settings except threads and progress), else rendered and stored. `fromCache`
 // says which. The EmbreeScene is built only when rendering.
 PathTraceImage cachedPathTrace(const ReferenceCache& cache, const engine::Scene& scene,
                                const engine::View& view, uint32_t bouncingLight,
+                               const PathTraceSettings& settings, bool* fromCache = nullptr);
+PathTraceImage cachedPathTrace(const ReferenceCache& cache, const engine::Scene& scene,
+                               const engine::View& view, std::span<const uint32_t> bouncingLights,
                                const PathTraceSettings& settings, bool* fromCache = nullptr);
 
 }  // namespace truth

@@ -126,8 +126,23 @@ engine::GBuffer renderGBuffer(engine::Context& ctx, const engine::SceneGpu& gpuS
   return gbuffer;
 }
 
+gi::Light apiLight(const engine::Light& light) {
+  gi::Light l;
+  l.type = light.type == engine::LightType::Spot          ? gi::Light::Type::Spot
+           : light.type == engine::LightType::Directional ? gi::Light::Type::Directional
+                                                          : gi::Light::Type::Point;
+  l.position = light.position;
+  l.direction = light.direction;
+  l.color = light.color;
+  l.intensity = light.intensity;
+  l.innerConeAngle = light.innerConeAngle;
+  l.outerConeAngle = light.outerConeAngle;
+  l.range = light.range;
+  return l;
+}
+
 gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& view,
-                          const engine::Light& light) {
+                          std::span<const engine::Light> lights) {
   gi::FrameInput in;
   auto ref = [](const engine::Image& image) {
     return gi::ImageRef{image.handle(), image.view(), image.layout()};
@@ -135,17 +150,13 @@ gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& vi
   in.gbuffer = {gbuffer.width,       gbuffer.height,       ref(gbuffer.depth),
                 ref(gbuffer.normal), ref(gbuffer.diffuse), ref(gbuffer.specular)};
   in.camera = {view.view, view.proj};
-  in.light.type = light.type == engine::LightType::Spot          ? gi::Light::Type::Spot
-                  : light.type == engine::LightType::Directional ? gi::Light::Type::Directional
-                                                                 : gi::Light::Type::Point;
-  in.light.position = light.position;
-  in.light.direction = light.direction;
-  in.light.color = light.color;
-  in.light.intensity = light.intensity;
-  in.light.innerConeAngle = light.innerConeAngle;
-  in.light.outerConeAngle = light.outerConeAngle;
-  in.light.range = light.range;
+  for (const engine::Light& light : lights) in.lights.push_back(apiLight(light));
   return in;
+}
+
+gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& view,
+                          const engine::Light& light) {
+  return frameInput(gbuffer, view, std::span<const engine::Light>(&light, 1));
 }
 
 namespace {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -57,7 +58,12 @@ std::unique_ptr<gi::IndirectLighting> createIndirect(engine::Context& ctx,
 engine::GBuffer renderGBuffer(engine::Context& ctx, const engine::SceneGpu& gpuScene,
                               const engine::View& view);
 
-// The G-buffer images (GENERAL layout), camera and light of one frame.
+// A scene light as the API takes it.
+gi::Light apiLight(const engine::Light& light);
+// The G-buffer images (GENERAL layout), camera and lights of one frame (FrameInput::lights).
+gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& view,
+                          std::span<const engine::Light> lights);
+// ... with one light.
 gi::FrameInput frameInput(const engine::GBuffer& gbuffer, const engine::View& view,
                           const engine::Light& light);
 

@@ -12,6 +12,7 @@
 #include "embree_scene.h"
 #include "engine/error.h"
 #include "engine/image_metrics.h"
+#include "gi/indirect_lighting.h"
 #include "path_tracer.h"
 #include "program_exit.h"
 #include "scene_files.h"
@@ -92,12 +93,19 @@ Options parseOptions(int argc, char** argv) {
   return o;
 }
 
-// The light the RSM renders (the sample renderer's choice): the first.
-uint32_t bouncingLight(const engine::Scene& scene) {
+// The lights that bounce: all of them, as vsgl_render gives the module every light (up to
+// gi::kMaxLights: a file with more is refused here rather than compared unlike with like).
+std::vector<uint32_t> bouncingLights(const engine::Scene& scene) {
   if (scene.lights.empty())
     throw engine::Error("--scene: '" + scene.source +
                         "' has no light to bounce (--light none; auto, sun or headlight add one)");
-  return 0;
+  if (scene.lights.size() > gi::kMaxLights)
+    throw engine::Error("--scene: '" + scene.source + "' has " +
+                        std::to_string(scene.lights.size()) + " lights; the module bounces " +
+                        std::to_string(gi::kMaxLights) + " at most");
+  std::vector<uint32_t> lights(scene.lights.size());
+  for (uint32_t i = 0; i < lights.size(); ++i) lights[i] = i;
+  return lights;
 }
 
 // RMSE, relative MSE and PSNR of `test` against the reference's indirect light, and a
@@ -124,11 +132,11 @@ int run(const Options& o) {
   const std::string lightNote =
       samples::applyLightChoice(scene, o.light, false, float(o.width) / float(o.height));
   if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
-  const uint32_t light = bouncingLight(scene);
+  const std::vector<uint32_t> lights = bouncingLights(scene);
   const engine::View view = samples::sceneView(scene, o.width, o.height);
   samples::createOutputDirectory(o.outDir);
-  std::printf("scene: %s, %u triangles, %ux%u, light %u bounces, noise target %.3g\n",
-              scene.source.c_str(), scene.triangleCount(), o.width, o.height, light,
+  std::printf("scene: %s, %u triangles, %ux%u, %zu lights bounce, noise target %.3g\n",
+              scene.source.c_str(), scene.triangleCount(), o.width, o.height, lights.size(),
               o.trace.relativeError);
   bool fromCache = false;
   const truth::PathTraceImage r =
@@ -136,8 +144,8 @@ int run(const Options& o) {
                     truth::ReferenceCache(o.cacheDir.empty()
                                               ? (std::filesystem::path(o.outDir) / "cache").string()
                                               : o.cacheDir),
-                    scene, view, light, o.trace, &fromCache)
-              : truth::pathTrace(scene, truth::EmbreeScene(scene), view, light, o.trace);
+                    scene, view, lights, o.trace, &fromCache)
+              : truth::pathTrace(scene, truth::EmbreeScene(scene), view, lights, o.trace);
   if (fromCache) std::printf("reference from the cache (rendered in %.1f s)\n", r.seconds);
   uint64_t samples = 0, pixels = 0;
   for (uint32_t n : r.samples)
@@ -178,7 +186,11 @@ int run(const Options& o) {
   for (size_t i = 0; i < indirect.size(); ++i) indirect[i] = r.diffuse[i] + r.glossy[i];
   if (o.vplRsm > 0) {
     const truth::EmbreeScene rays(scene);
-    const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, rays, light, o.vplRsm);
+    std::vector<truth::Vpl> vpls;
+    for (uint32_t light : lights) {
+      const std::vector<truth::Vpl> own = truth::rsmVpls(scene, rays, light, o.vplRsm);
+      vpls.insert(vpls.end(), own.begin(), own.end());
+    }
     const truth::VplGatherImage g = truth::vplGather(scene, rays, view, vpls, o.trace.threads);
     std::vector<glm::dvec3> gathered(indirect.size());
     for (size_t i = 0; i < gathered.size(); ++i) gathered[i] = g.diffuse[i] + g.glossy[i];

@@ -83,19 +83,21 @@ int run(const render::Options& o) {
   std::optional<engine::ImageRgba32f> environment;
   if (!o.environment.empty()) environment = samples::loadEnvironment(o.environment);
   std::unique_ptr<gi::IndirectLighting> indirect;
-  const engine::Light* bouncing = samples::bouncingLight(scene);
-  if (o.indirect && (bouncing || environment))
+  // Every light of the scene bounces, up to the module's limit.
+  const size_t bouncing = std::min<size_t>(scene.lights.size(), gi::kMaxLights);
+  if (o.indirect && (bouncing > 0 || environment))
     indirect = samples::createIndirect(ctx, o.gi, o.width, o.height, gpuScene, scene);
-  if (o.indirect && !bouncing)
+  if (o.indirect && bouncing == 0)
     std::printf("indirect: %s, the scene has no light to bounce\n",
                 environment ? "environment light only" : "skipped");
-  // Without a light to bounce the module still shades the environment: a light of no power
-  // makes the planner skip every VSGL pass.
-  engine::Light dark;
-  dark.type = engine::LightType::Directional;
-  dark.intensity = 0.0f;
+  if (o.indirect && bouncing < scene.lights.size())
+    std::printf("indirect: the first %zu of the scene's %zu lights bounce (gi::kMaxLights)\n",
+                bouncing, scene.lights.size());
+  // Without a light the module still shades the environment: no light, no VSGL pass.
   gi::FrameInput input;
-  if (indirect) input = samples::frameInput(gbuffer, view, bouncing ? *bouncing : dark);
+  if (indirect)
+    input = samples::frameInput(gbuffer, view,
+                                std::span<const engine::Light>(scene.lights.data(), bouncing));
   if (indirect && environment) {
     samples::check(indirect->setEnvironment(
         {uint32_t(environment->width), uint32_t(environment->height), environment->pixels.data()}));

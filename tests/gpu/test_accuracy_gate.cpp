@@ -52,14 +52,15 @@ class AccuracyTest : public testing_gpu::GpuTest {
     view_ = engine::cameraView(scene_.cameras.at(0), kWidth, kHeight);
     gpuScene_ = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx(), scene_));
     gbuffer_ = std::make_unique<engine::GBuffer>(renderGBuffer(*gpuScene_, view_));
-    const engine::Light* light = samples::bouncingLight(scene_);
-    ASSERT_NE(light, nullptr);
-    light_ = light;
+    // Every light of the scene bounces, in the module and in the path tracer.
+    ASSERT_FALSE(scene_.lights.empty());
+    std::vector<uint32_t> lights(scene_.lights.size());
+    for (uint32_t i = 0; i < lights.size(); ++i) lights[i] = i;
     truth::PathTraceSettings settings;
     settings.relativeError = 0.03;  // the benchmark's references' target
     const truth::ReferenceCache cache(VSGL_TEST_CACHE);
-    const truth::PathTraceImage traced = truth::cachedPathTrace(
-        cache, scene_, view_, uint32_t(light - scene_.lights.data()), settings);
+    const truth::PathTraceImage traced =
+        truth::cachedPathTrace(cache, scene_, view_, lights, settings);
     reference_.resize(traced.diffuse.size());
     for (size_t i = 0; i < reference_.size(); ++i)
       reference_[i] = traced.diffuse[i] + traced.glossy[i];
@@ -69,7 +70,7 @@ class AccuracyTest : public testing_gpu::GpuTest {
     std::unique_ptr<gi::IndirectLighting> lighting =
         samples::createIndirect(ctx(), settings, kWidth, kHeight, *gpuScene_, scene_);
     gi::FrameOutput out;
-    const gi::FrameInput in = samples::frameInput(*gbuffer_, view_, *light_);
+    const gi::FrameInput in = samples::frameInput(*gbuffer_, view_, scene_.lights);
     ctx().submitAndWait(
         [&](VkCommandBuffer cmd) { samples::check(lighting->record(cmd, in, &out)); });
     if (plan) *plan = lighting->lastPlan();
@@ -87,7 +88,6 @@ class AccuracyTest : public testing_gpu::GpuTest {
 
   engine::Scene scene_;
   engine::View view_;
-  const engine::Light* light_ = nullptr;
   std::unique_ptr<engine::SceneGpu> gpuScene_;
   std::unique_ptr<engine::GBuffer> gbuffer_;
   std::vector<glm::dvec3> reference_;
@@ -223,6 +223,40 @@ TEST_F(AccuracyTest, PointLightAgainstPathTracer) {
   EXPECT_LE(many.relativeMse, 0.0155);
   EXPECT_LE(std::abs(many.meanRatio - 1.0), 0.113);
   EXPECT_LE(many.relativeMse, 0.56 * few.relativeMse) << "more VSGLs must buy accuracy";
+}
+
+// Lights of all three kinds at once (docs/techniques/many-lights.md): the Cornell box's spot, a
+// point light in the middle of the room at a quarter of its intensity, and a sun through the
+// open front, against the path tracer bouncing all three. Measured: relMSE 0.0603 (N = 64),
+// 0.0226 (N = 512), mean ratio 0.795, 0.909. The target, 1.5x the single-light scenes'
+// relMSE at N = 512, is not met (4.9x the Cornell box's spot alone): the point light's contact
+// lines (PointLightAgainstPathTracer) and the sun's small lit patch inside the box, seen through
+// its open front, are the error. Bounds with the gate's margins.
+TEST_F(AccuracyTest, ThreeLightsAgainstPathTracer) {
+  engine::Scene cornell = engine::makeBuiltinScene("cornell");
+  engine::Light point = cornell.lights.at(0);
+  point.type = engine::LightType::Point;
+  point.position = glm::vec3(0.0f, 1.0f, 0.0f);
+  point.intensity *= 0.25f;
+  engine::Light sun;
+  sun.name = "sun";
+  sun.type = engine::LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -0.5f, -1.0f));
+  sun.intensity = 1.0f;
+  cornell.lights.push_back(point);
+  cornell.lights.push_back(sun);
+  prepare(cornell);
+  gi::Settings settings;
+  settings.vsglCount = 64;
+  const Score few = score(settings);
+  settings.vsglCount = 512;
+  const Score many = score(settings);
+  std::printf(
+      "cornell, three lights: relMSE %.5f (N = 64), %.5f (N = 512); mean ratio %.4f, %.4f\n",
+      few.relativeMse, many.relativeMse, few.meanRatio, many.meanRatio);
+  EXPECT_LE(many.relativeMse, 0.026);
+  EXPECT_LE(std::abs(many.meanRatio - 1.0), 0.121);
+  EXPECT_LE(many.relativeMse, 0.47 * few.relativeMse) << "more VSGLs must buy accuracy";
 }
 
 }  // namespace

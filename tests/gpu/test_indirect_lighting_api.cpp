@@ -66,13 +66,15 @@ class IndirectLightingApiTest : public testing_gpu::GpuTest {
     in.camera = {view_.view, view_.proj};
     const engine::Light& light = scene_.lights.at(0);
     EXPECT_EQ(light.type, engine::LightType::Spot);
-    in.light.type = gi::Light::Type::Spot;
-    in.light.position = light.position;
-    in.light.direction = light.direction;
-    in.light.color = light.color;
-    in.light.intensity = light.intensity;
-    in.light.innerConeAngle = light.innerConeAngle;
-    in.light.outerConeAngle = light.outerConeAngle;
+    gi::Light spot;
+    spot.type = gi::Light::Type::Spot;
+    spot.position = light.position;
+    spot.direction = light.direction;
+    spot.color = light.color;
+    spot.intensity = light.intensity;
+    spot.innerConeAngle = light.innerConeAngle;
+    spot.outerConeAngle = light.outerConeAngle;
+    in.lights = {spot};
     return in;
   }
 
@@ -274,24 +276,24 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const std::pair<std::function<void(gi::Light&)>, std::string> badLights[] = {
       {[](gi::Light& l) { l.range = std::numeric_limits<float>::infinity(); },
-       "FrameInput.light.range: inf m must be finite and >= 0 (0 = no range)"},
+       "FrameInput.lights[0].range: inf m must be finite and >= 0 (0 = no range)"},
       {[&](gi::Light& l) { l.position.y = nan; },
-       "FrameInput.light.position: (0, nan, 0.6) is not finite"},
+       "FrameInput.lights[0].position: (0, nan, 0.6) is not finite"},
       {[](gi::Light& l) { l.direction = glm::vec3(0.0f); },
-       "FrameInput.light.direction: (0, 0, 0) must be finite and non-zero"},
+       "FrameInput.lights[0].direction: (0, 0, 0) must be finite and non-zero"},
       {[](gi::Light& l) { l.color.g = -1.0f; },
-       "FrameInput.light.color: (1, -1, 1) must be finite and >= 0"},
+       "FrameInput.lights[0].color: (1, -1, 1) must be finite and >= 0"},
       {[&](gi::Light& l) { l.intensity = nan; },
-       "FrameInput.light.intensity: nan must be finite and >= 0"},
+       "FrameInput.lights[0].intensity: nan must be finite and >= 0"},
       {[](gi::Light& l) { l.innerConeAngle = 0.7f; },
-       "FrameInput.light.innerConeAngle: 0.7 rad is outside [0, outerConeAngle = 0.6)"},
+       "FrameInput.lights[0].innerConeAngle: 0.7 rad is outside [0, outerConeAngle = 0.6)"},
       {[](gi::Light& l) { l.outerConeAngle = 1.5f; },
-       "FrameInput.light.outerConeAngle: 1.5 rad is outside (0, 1.3] (the RSM's widest cone)"},
+       "FrameInput.lights[0].outerConeAngle: 1.5 rad is outside (0, 1.3] (the RSM's widest cone)"},
       {[](gi::Light& l) { l.type = gi::Light::Type(7); },
-       "FrameInput.light.type: 7 is none of Spot, Directional, Point"}};
+       "FrameInput.lights[0].type: 7 is none of Spot, Directional, Point"}};
   for (const auto& [edit, message] : badLights) {
     gi::FrameInput bad = input();
-    edit(bad.light);
+    edit(bad.lights[0]);
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
       gi::Status s = lighting->record(cmd, bad, &out);
       EXPECT_FALSE(s);
@@ -300,10 +302,10 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   }
   // A point light reads neither direction nor cones.
   gi::FrameInput point = input();
-  point.light.type = gi::Light::Type::Point;
-  point.light.direction = glm::vec3(0.0f);
-  point.light.outerConeAngle = 3.0f;
-  EXPECT_EQ(gi::validateLight(point.light, "FrameInput.light"), "");
+  point.lights[0].type = gi::Light::Type::Point;
+  point.lights[0].direction = glm::vec3(0.0f);
+  point.lights[0].outerConeAngle = 3.0f;
+  EXPECT_EQ(gi::validateLight(point.lights[0], "FrameInput.lights[0]"), "");
   gi::SceneGeometry empty = geometry();
   empty.triangleCount = 0;
   EXPECT_FALSE(lighting->setScene(empty));
@@ -363,8 +365,8 @@ TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
     ASSERT_TRUE(lighting) << status.message;
     ASSERT_TRUE(lighting->setScene(geometry()));
     gi::FrameInput in = input();
-    in.light = samples::frameInput(*gbuffer_, view_, point).light;
-    ASSERT_EQ(in.light.type, gi::Light::Type::Point);
+    in.lights = {samples::apiLight(point)};
+    ASSERT_EQ(in.lights[0].type, gi::Light::Type::Point);
     gi::FrameOutput out;
     ctx().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, in, &out)); });
     for (engine::Image* image :
@@ -411,6 +413,130 @@ TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
   }
 }
 
+// Several lights at once (docs/techniques/many-lights.md). Three spots: the box's own, a second
+// at the same place aimed at the back wall, and a dim one aimed at the floor from the front.
+// Their views share N on the GPU (FrameOutput::vsglViews); with the ISMs and adaptive shading
+// off the shading is a plain sum over the records, so the frame equals the sum of single-light
+// frames given the same counts, up to fp32 summation order (relative 1e-4 of the pixel plus
+// 1e-6 of the image's brightest pixel).
+TEST_F(IndirectLightingApiTest, SeveralLightsShadeAsTheSumOfEach) {
+  gi::Settings settings = smallSettings();
+  settings.ismEnabled = false;
+  settings.adaptive.enabled = false;
+  settings.vsglCount = 96;
+  const gi::Light own = input().lights.at(0);
+  gi::Light wall = own;
+  wall.direction = glm::normalize(glm::vec3(0.0f, -0.3f, -1.0f));
+  gi::Light dim = own;
+  dim.position = glm::vec3(0.3f, 1.2f, 0.9f);
+  dim.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, -0.3f));
+  dim.intensity *= 0.2f;
+  const std::vector<gi::Light> lights = {own, wall, dim};
+
+  auto frame = [&](const std::vector<gi::Light>& these, uint32_t count,
+                   std::vector<glm::uvec2>* ranges) {
+    gi::Settings s = settings;
+    s.vsglCount = count;
+    s.maxVsglCount = settings.vsglCount;
+    gi::Status status;
+    auto lighting = gi::IndirectLighting::create(handles(), s, kWidth, kHeight, &status);
+    EXPECT_TRUE(lighting) << status.message;
+    EXPECT_TRUE(lighting->setScene(geometry()));
+    gi::FrameInput in = input();
+    in.lights = these;
+    gi::FrameOutput out;
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, in, &out)); });
+    for (engine::Image* image :
+         {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+      image->setLayout(out.gbufferLayout);
+    if (ranges) *ranges = samples::readVsglViews(ctx(), out);
+    std::vector<glm::vec4> light = readOutput(out.indirectDiffuse);
+    const std::vector<glm::vec4> glossy = readOutput(out.indirectGlossy);
+    for (size_t i = 0; i < light.size(); ++i) light[i] += glossy[i];
+    return light;
+  };
+  std::vector<glm::uvec2> ranges;
+  const std::vector<glm::vec4> all = frame(lights, settings.vsglCount, &ranges);
+  ASSERT_EQ(ranges.size(), 3u);
+  std::printf("three lights: %u, %u and %u of %u VSGLs\n", ranges[0].y, ranges[1].y, ranges[2].y,
+              settings.vsglCount);
+  std::vector<glm::vec4> sum(all.size(), glm::vec4(0.0f));
+  for (uint32_t l = 0; l < 3; ++l) {
+    ASSERT_GT(ranges[l].y, 0u) << "light " << l;
+    const std::vector<glm::vec4> one = frame({lights[l]}, ranges[l].y, nullptr);
+    for (size_t i = 0; i < sum.size(); ++i) sum[i] += one[i];
+  }
+  EXPECT_LT(ranges[2].y, ranges[0].y) << "the dim light gets fewer";
+  float brightest = 0.0f;
+  for (const glm::vec4& c : sum) brightest = std::max({brightest, c.r, c.g, c.b});
+  ASSERT_GT(brightest, 0.0f);
+  for (size_t i = 0; i < sum.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_NEAR(all[i][c], sum[i][c], 1e-4f * sum[i][c] + 1e-6f * brightest) << "pixel " << i;
+}
+
+// The shares follow the lights' power: two spots at the same place along the same axis, one 9x
+// the other, reflect the same light 9 : 1, so 100 VSGLs split 90 : 10 (exact up to a record of
+// fp32 rounding), with either PDF.
+TEST_F(IndirectLightingApiTest, VsglSharesFollowTheLightsPower) {
+  for (gi::PdfKind pdf : {gi::PdfKind::Brsm, gi::PdfKind::Flux}) {
+    gi::Settings settings = smallSettings();
+    settings.pdf = pdf;
+    settings.vsglCount = 100;
+    gi::Light bright = input().lights.at(0), faint = bright;
+    faint.intensity = bright.intensity / 9.0f;
+    gi::FrameInput in = input();
+    in.lights = {bright, faint};
+    gi::Status status;
+    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+    ASSERT_TRUE(lighting) << status.message;
+    ASSERT_TRUE(lighting->setScene(geometry()));
+    gi::FrameOutput out;
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, in, &out)); });
+    for (engine::Image* image :
+         {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+      image->setLayout(out.gbufferLayout);
+    const std::vector<glm::uvec2> ranges = samples::readVsglViews(ctx(), out);
+    ASSERT_EQ(ranges.size(), 2u);
+    EXPECT_NEAR(double(ranges[0].y), 90.0, 1.0);
+    EXPECT_EQ(ranges[0].y + ranges[1].y, 100u);
+  }
+}
+
+// A light without power gets no RSM, and the plan says so; past kMaxLights the frame is refused
+// with one line.
+TEST_F(IndirectLightingApiTest, DarkLightGetsNoRsmAndTooManyAreRefused) {
+  gi::Settings settings = smallSettings();
+  gi::FrameInput in = input();
+  gi::Light dark = in.lights.at(0);
+  dark.intensity = 0.0f;
+  gi::Status status;
+  auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+  ASSERT_TRUE(lighting) << status.message;
+  ASSERT_TRUE(lighting->setScene(geometry()));
+  gi::FrameOutput out;
+  recordFrame(*lighting, out);  // the first frame also builds the ISM point pool
+  const std::vector<std::string> one = recordFrame(*lighting, out);
+  in.lights.push_back(dark);
+  ctx().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, in, &out)); });
+  for (engine::Image* image :
+       {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+    image->setLayout(out.gbufferLayout);
+  EXPECT_EQ(lighting->lastPlan().lights, std::vector<uint32_t>{0});
+  EXPECT_EQ(out.viewCount, 1u);
+  const auto& reasons = lighting->lastPlan().reasons;
+  EXPECT_NE(std::find(reasons.begin(), reasons.end(),
+                      "light 1: no power (intensity x colour = 0): no RSM"),
+            reasons.end());
+  EXPECT_EQ(lighting->lastFrameTimes().size(), one.size()) << "the same passes as one light";
+  in.lights.assign(gi::kMaxLights + 1, in.lights.at(0));
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    const gi::Status s = lighting->record(cmd, in, &out);
+    EXPECT_FALSE(s);
+    EXPECT_EQ(s.message, "FrameInput.lights: 9 lights, more than kMaxLights = 8");
+  });
+}
+
 // The effect planner (issue 9): with no light that can bounce, because the light has no power or
 // because no surface reflects, it skips every pass. The outputs are the same as without the
 // planner, where every pass runs and yields exactly 0 (zero flux makes zero VSGL power makes
@@ -438,13 +564,13 @@ TEST_F(IndirectLightingApiTest, PlannerSkipsEveryPassWhenNothingCanBounce) {
     std::printf("%s: %zu passes with the planner, %zu without\n", why, on.passes(), off.passes());
   };
   gi::FrameInput dark = input();
-  dark.light.intensity = 0.0f;
+  dark.lights[0].intensity = 0.0f;
   expectSame(dark, geometry(), "light: no power");
   // A spot 3 m above the box's top whose range is 2 m: its window is 0 on every surface.
   gi::FrameInput far = input();
-  far.light.position.y = 5.0f;
-  far.light.range = 2.0f;
-  ASSERT_EQ(far.light.type, gi::Light::Type::Spot);
+  far.lights[0].position.y = 5.0f;
+  far.lights[0].range = 2.0f;
+  ASSERT_EQ(far.lights[0].type, gi::Light::Type::Spot);
   expectSame(far, geometry(), "light: its range ends before the scene's bounds");
 
   // A black dielectric without a specular lobe (KHR_materials_specular strength 0): no diffuse

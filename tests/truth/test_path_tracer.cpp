@@ -363,4 +363,35 @@ TEST(PathTracer, PointLightAgreesWithTheVplGather) {
   EXPECT_NEAR(g / t, 1.0, 0.02);
 }
 
+// Several lights bounce at once: the Cornell box's spot and a point light in the middle of the
+// room, traced together and each alone. Summed over the image, together must equal the sum of
+// the two within 4 standard errors of the difference (three independent runs).
+TEST(PathTracer, TwoLightsBounceAsTheSumOfEach) {
+  engine::Scene scene = engine::makeBuiltinScene("cornell");
+  engine::Light point = scene.lights.at(0);
+  point.type = engine::LightType::Point;
+  point.position = glm::vec3(0.0f, 1.0f, 0.0f);
+  point.intensity *= 0.25f;
+  scene.lights.push_back(point);
+  const truth::EmbreeScene rays(scene);
+  const engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
+  truth::PathTraceSettings s;
+  s.relativeError = 0.03;
+  auto sum = [&](std::vector<uint32_t> lights, double& variance) {
+    const truth::PathTraceImage image = truth::pathTrace(scene, rays, view, lights, s);
+    double total = 0.0;
+    for (size_t i = 0; i < image.diffuse.size(); ++i) {
+      total += gi::luminance709(image.diffuse[i] + image.glossy[i]);
+      variance += image.standardError[i] * image.standardError[i];
+    }
+    return total;
+  };
+  double vBoth = 0.0, vEach = 0.0;
+  const double both = sum({0, 1}, vBoth);
+  const double each = sum({0}, vEach) + sum({1}, vEach);
+  std::printf("two lights: together %.6g, each alone summed %.6g (%.2f standard errors)\n", both,
+              each, std::abs(both - each) / std::sqrt(vBoth + vEach));
+  EXPECT_LT(std::abs(both - each), 4.0 * std::sqrt(vBoth + vEach));
+}
+
 }  // namespace

@@ -140,10 +140,20 @@ struct EnvironmentImage {
   const float* rgba = nullptr;
 };
 
+// Lights one frame bounces at most: 48 RSM views (a point light has six) share the N VSGLs.
+constexpr uint32_t kMaxLights = 8;
+
 struct FrameInput {
   GBufferImages gbuffer;
   Camera camera;
-  Light light;
+  // Every light whose bounce the frame shows, at most kMaxLights (docs/techniques/
+  // many-lights.md). Their RSM views share the N VSGLs in proportion to the light each reflects
+  // towards the view, so a dim light gets few and one that bounces nothing none; a light without
+  // power, or whose range ends before the scene, gets no RSM (FramePlan). One shading pass
+  // shades them all. Each extra view (a spot or directional light is one, a point light six)
+  // costs its RSM, attribute and PDF passes (lavapipe: about 45 ms at rsmSize 256) and 128 x
+  // rsmSize^2 x 4/3 bytes of attribute pyramids (8.4 MB at 256).
+  std::vector<Light> lights;
 };
 
 struct FrameOutput {
@@ -186,6 +196,7 @@ struct FramePlan {
   bool culled = false;                // VSGLs culled per subgroup (Settings::culling)
   bool environment = false;           // the environment was shaded (an environment is set)
   bool environmentConverted = false;  // ... and converted this frame (it changed)
+  std::vector<uint32_t> lights;       // the FrameInput::lights that bounced, by index
   std::vector<std::string> reasons;   // one line per decision that left work out
 };
 
