@@ -74,15 +74,27 @@ class ProceduralScene {
   }
 
   void addSpotLight(const std::string& name, glm::vec3 position, glm::vec3 target, float intensity,
-                    float innerCone, float outerCone) {
+                    float innerCone, float outerCone, glm::vec3 color = glm::vec3(1.0f)) {
     Light light;
     light.name = name;
     light.type = LightType::Spot;
     light.position = position;
     light.direction = glm::normalize(target - position);
+    light.color = color;
     light.intensity = intensity;
     light.innerConeAngle = innerCone;
     light.outerConeAngle = outerCone;
+    scene_.lights.push_back(std::move(light));
+  }
+
+  void addPointLight(const std::string& name, glm::vec3 position, glm::vec3 color,
+                     float intensity) {
+    Light light;
+    light.name = name;
+    light.type = LightType::Point;
+    light.position = position;
+    light.color = color;
+    light.intensity = intensity;
     scene_.lights.push_back(std::move(light));
   }
 
@@ -291,17 +303,99 @@ Scene makeChecker() {
   return s.take();
 }
 
+// Living room lit by one light of each type: x in [-2.4, 2.4], y in [0, 2.4], z in [-1.6, 1.6],
+// open towards +Z like the Cornell box, a window in the left wall (x = -2.4).
+Scene makeLounge() {
+  constexpr float kHalfWidth = 2.4f;
+  constexpr float kHalfDepth = 1.6f;
+  constexpr float kHeight = 2.4f;
+  constexpr float kWallCell = 0.3f;
+  constexpr float kFurnitureCell = 0.2f;
+  // The window: z in [-1, 0], sill at 0.9 m, lintel at 1.9 m.
+  constexpr float kWindowMinZ = -1.0f;
+  constexpr float kWindowMaxZ = 0.0f;
+  constexpr float kSill = 0.9f;
+  constexpr float kLintel = 1.9f;
+  constexpr glm::vec3 kPlaster(0.8f, 0.78f, 0.74f);
+  constexpr glm::vec3 kWood(0.45f, 0.3f, 0.18f);
+  constexpr glm::vec3 kFabric(0.1f, 0.35f, 0.4f);
+  constexpr glm::vec3 kLacquer(0.75f, 0.75f, 0.75f);
+  constexpr glm::vec3 kRedLacquer(0.5f, 0.1f, 0.08f);
+  // Sun 38 degrees above the horizon from the left, travelling slightly towards the open front,
+  // so it enters only through the window: a 1 x 1 m patch on the floor at x ~ -1, the rest of
+  // the room lit by the lamps and the bounce. 4 W/m^2 on a plane facing it.
+  constexpr glm::vec3 kSunDirection(0.62f, -0.62f, 0.2f);
+  constexpr float kSunIlluminance = 4.0f;
+  // Warm bulb hanging over the right half of the room, 0.8 m below the ceiling: it lights the
+  // ceiling, the right wall and the cabinet from inside the room, like a real lamp.
+  constexpr glm::vec3 kLampPosition(1.2f, 1.6f, -0.5f);
+  constexpr glm::vec3 kLampColour(1.0f, 0.85f, 0.65f);
+  constexpr float kLampIntensity = 2.0f;  // W/sr: 2 W/m^2 on the wall 1.2 m away
+  // Two ceiling spots: a cool one on the back wall behind the sofa, a red-orange one on the
+  // cabinet and the floor in front of it.
+  constexpr glm::vec3 kCoolSpotPosition(-0.8f, 2.35f, 0.9f);
+  constexpr glm::vec3 kCoolSpotTarget(-0.9f, 0.6f, -1.6f);
+  constexpr glm::vec3 kCoolSpotColour(0.55f, 0.7f, 1.0f);
+  constexpr glm::vec3 kWarmSpotPosition(1.8f, 2.35f, 1.0f);
+  constexpr glm::vec3 kWarmSpotTarget(1.5f, 0.0f, -0.9f);
+  constexpr glm::vec3 kWarmSpotColour(1.0f, 0.55f, 0.3f);
+  constexpr float kSpotIntensity = 10.0f;  // W/sr: ~3 W/m^2 where each lands, 2 m away
+  constexpr float kSpotInner = 0.3f;
+  constexpr float kSpotOuter = 0.45f;
+  // Outside the open front, framing the room's height; the 2:1 room fills a 16:9 view.
+  constexpr glm::vec3 kEye(0.0f, 1.2f, 4.5f);
+  constexpr glm::vec3 kLookAt(0.0f, 1.1f, 0.0f);
+  constexpr float kYfov = 0.69f;
+
+  ProceduralScene s("lounge");
+  const uint32_t plaster = s.addMaterial("plaster", kPlaster, 0.9f, 0.0f);
+  const uint32_t wood = s.addMaterial("oiled wood floor", kWood, 0.35f, 0.0f);
+  const uint32_t fabric = s.addMaterial("sofa fabric", kFabric, 0.95f, 0.0f);
+  const uint32_t lacquer = s.addMaterial("white lacquer", kLacquer, 0.3f, 0.0f);
+  const uint32_t redLacquer = s.addMaterial("red lacquer", kRedLacquer, 0.45f, 0.0f);
+
+  const float w = 2.0f * kHalfWidth, d = 2.0f * kHalfDepth;
+  const float x0 = -kHalfWidth, z0 = kHalfDepth;  // the left wall's front edge
+  s.addRect({x0, 0.0f, z0}, {w, 0.0f, 0.0f}, {0.0f, 0.0f, -d}, wood, kWallCell);
+  s.addRect({x0, kHeight, -kHalfDepth}, {w, 0.0f, 0.0f}, {0.0f, 0.0f, d}, plaster, kWallCell);
+  s.addRect({x0, 0.0f, -kHalfDepth}, {w, 0.0f, 0.0f}, {0.0f, kHeight, 0.0f}, plaster, kWallCell);
+  s.addRect({kHalfWidth, 0.0f, -kHalfDepth}, {0.0f, 0.0f, d}, {0.0f, kHeight, 0.0f}, plaster,
+            kWallCell);
+  // The left wall in four pieces around the window, all facing +X (into the room).
+  const glm::vec3 towardsBack(0.0f, 0.0f, -1.0f), up(0.0f, 1.0f, 0.0f);
+  s.addRect({x0, 0.0f, z0}, towardsBack * d, up * kSill, plaster, kWallCell);
+  s.addRect({x0, kLintel, z0}, towardsBack * d, up * (kHeight - kLintel), plaster, kWallCell);
+  s.addRect({x0, kSill, z0}, towardsBack * (z0 - kWindowMaxZ), up * (kLintel - kSill), plaster,
+            kWallCell);
+  s.addRect({x0, kSill, kWindowMinZ}, towardsBack * (kWindowMinZ + kHalfDepth),
+            up * (kLintel - kSill), plaster, kWallCell);
+
+  s.addBox({-1.0f, 0.0f, -1.2f}, {1.8f, 0.45f, 0.7f}, 0.0f, fabric, kFurnitureCell);   // sofa
+  s.addBox({1.7f, 0.0f, -1.3f}, {0.8f, 1.5f, 0.45f}, 0.0f, lacquer, kFurnitureCell);   // cabinet
+  s.addBox({0.3f, 0.0f, 0.1f}, {0.9f, 0.4f, 0.6f}, 0.2f, redLacquer, kFurnitureCell);  // table
+
+  s.addPointLight("lamp", kLampPosition, kLampColour, kLampIntensity);
+  s.addSpotLight("cool spot", kCoolSpotPosition, kCoolSpotTarget, kSpotIntensity, kSpotInner,
+                 kSpotOuter, kCoolSpotColour);
+  s.addSpotLight("warm spot", kWarmSpotPosition, kWarmSpotTarget, kSpotIntensity, kSpotInner,
+                 kSpotOuter, kWarmSpotColour);
+  s.addSun("sun through the window", kSunDirection, kSunIlluminance);
+  s.setCamera(kEye, kLookAt, kYfov);
+  return s.take();
+}
+
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-  return {"cornell", "atrium", "checker"};
+  return {"cornell", "atrium", "checker", "lounge"};
 }
 
 Scene makeBuiltinScene(const std::string& name) {
   if (name == "cornell") return makeCornell();
   if (name == "atrium") return makeAtrium();
   if (name == "checker") return makeChecker();
-  throw Error("unknown built-in scene '" + name + "' (choices: cornell, atrium, checker)");
+  if (name == "lounge") return makeLounge();
+  throw Error("unknown built-in scene '" + name + "' (choices: cornell, atrium, checker, lounge)");
 }
 
 }  // namespace engine

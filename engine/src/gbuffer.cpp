@@ -42,9 +42,11 @@ GBufferResolve::GBufferResolve(Context& ctx)
                sizeof(gpu::GBufferResolvePush)) {}
 
 void GBufferResolve::record(VkCommandBuffer cmd, const SceneGpu& scene, const Buffer& visibility,
-                            const View& view, GBuffer& g, GpuProfiler* profiler) {
+                            const View& view, GBuffer& g, GpuProfiler* profiler,
+                            BackFaces backFaces) {
   ProfileScope scope(profiler, cmd, "gbuffer resolve");
-  gpu::GBufferResolvePush push{view.invViewProj, {g.width, g.height}, 0, 0};
+  gpu::GBufferResolvePush push{
+      view.invViewProj, {g.width, g.height}, static_cast<uint32_t>(backFaces), 0};
   program_.dispatch(cmd,
                     {Binding::storage(visibility), Binding::storage(scene.vertices),
                      Binding::storage(scene.indices), Binding::storage(scene.triangleMaterials),

@@ -49,13 +49,14 @@ glm::dvec4 sampleBilinear(const Texture& t, glm::dvec2 uv, bool srgb) {
 }
 
 GBufferSample resolvePixel(const Scene& scene, const View& view, uint32_t x, uint32_t y,
-                           uint64_t vis) {
+                           uint64_t vis, BackFaces backFaces) {
   if (static_cast<uint32_t>(vis >> 32) == RASTER_EMPTY_HI) return {};
   const auto tri = static_cast<uint32_t>(vis & 0xFFFFFFFFu);
   glm::dvec3 pos[3];
   for (int k = 0; k < 3; ++k) pos[k] = scene.positions[scene.indices[3 * size_t{tri} + k]];
   const CameraRay ray = cameraRayReference(view, glm::dvec2(x + 0.5, y + 0.5));
-  GBufferSample s = surfaceAt(scene, tri, planeBarycentrics(ray, pos[0], pos[1], pos[2]), ray.dir);
+  GBufferSample s =
+      surfaceAt(scene, tri, planeBarycentrics(ray, pos[0], pos[1], pos[2]), ray.dir, backFaces);
   s.depth = std::bit_cast<float>(static_cast<uint32_t>(vis >> 32));
   return s;
 }
@@ -104,7 +105,7 @@ CameraRay cameraRayReference(const View& view, glm::dvec2 pixel) {
 }
 
 GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 barycentrics,
-                        glm::dvec3 rayDir) {
+                        glm::dvec3 rayDir, BackFaces backFaces) {
   uint32_t idx[3];
   glm::dvec3 pos[3], nrm[3];
   glm::dvec2 uv[3];
@@ -120,9 +121,14 @@ GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 baryce
   GBufferSample s;
   s.depth = 0.0f;
   s.normal = glm::normalize(nrm[0] * w0 + nrm[1] * bc.x + nrm[2] * bc.y);
-  if (glm::dot(glm::cross(pos[1] - pos[0], pos[2] - pos[0]), rayDir) > 0.0) s.normal = -s.normal;
+  const bool back = glm::dot(glm::cross(pos[1] - pos[0], pos[2] - pos[0]), rayDir) > 0.0;
+  if (back) s.normal = -s.normal;
 
   const Material& m = scene.materials[scene.triangleMaterial[triangle]];
+  if (back && backFaces == BackFaces::PerMaterial && !m.doubleSided) {
+    s.roughness = 1.0;  // black: diffuse, F0 and F90 stay 0
+    return s;
+  }
   glm::dvec4 base(m.baseColorFactor);
   if (m.baseColorTexture >= 0)
     base *= sampleBilinear(scene.textures[m.baseColorTexture], texcoord, true);
@@ -148,7 +154,7 @@ double srgbToLinear(double encoded) {
 }
 
 GBufferData resolveGBufferReference(const Scene& scene, const View& view,
-                                    std::span<const uint64_t> visibility) {
+                                    std::span<const uint64_t> visibility, BackFaces backFaces) {
   if (visibility.size() != size_t{view.width} * view.height)
     throw Error("resolveGBufferReference: " + std::to_string(visibility.size()) +
                 " visibility texels for a " + std::to_string(view.width) + "x" +
@@ -160,7 +166,7 @@ GBufferData resolveGBufferReference(const Scene& scene, const View& view,
   for (uint32_t y = 0; y < view.height; ++y)
     for (uint32_t x = 0; x < view.width; ++x) {
       size_t i = size_t{y} * view.width + x;
-      g.samples[i] = resolvePixel(scene, view, x, y, visibility[i]);
+      g.samples[i] = resolvePixel(scene, view, x, y, visibility[i], backFaces);
     }
   return g;
 }

@@ -123,6 +123,7 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
     g.roughness = m.roughnessFactor;
     g.baseColorLayer = layerOf(baseLayers, m.baseColorTexture);
     g.metallicRoughnessLayer = layerOf(dataLayers, m.metallicRoughnessTexture);
+    g.doubleSided = m.doubleSided ? 1u : 0u;
     for (int t : {m.baseColorTexture, m.metallicRoughnessTexture})
       if (t >= 0) largest = std::max({largest, scene.textures[t].width, scene.textures[t].height});
     materials.push_back(g);

@@ -344,7 +344,10 @@ class Tracer {
     // (c) samples points of its plane: a ray that meets anything else first is no sample of it
     // (receiverAreaPdf gives (c) no density there).
     if (!hit.hit || (plane >= 0 && mirrorPlanes_.ofTriangle[hit.triangle] != plane)) return {};
-    const ShadingPoint y = shadingPoint(scene_, hit, px.x.position, dir);
+    // y bounces the light on the side x sees (reflectLight shadows the rest), so the back face
+    // x sees is the one the light would see.
+    const ShadingPoint y =
+        shadingPoint(scene_, hit, px.x.position, dir, engine::BackFaces::PerMaterial);
     const Reflected r = reflectLight(rays_, bouncing_, y, -dir);
     if (r.diffuse + r.glossy == glm::dvec3(0.0)) return {};
     // The two sides' densities of y per m^2.
@@ -361,7 +364,8 @@ class Tracer {
     const auto [origin, dir] = lightSampler_.sample(u1, u2);
     const RayHit hit = rays_.intersect(origin, dir);
     if (!hit.hit) return {};
-    const ShadingPoint y = shadingPoint(scene_, hit, origin, dir);  // normal faces the light
+    const ShadingPoint y =  // normal faces the light
+        shadingPoint(scene_, hit, origin, dir, engine::BackFaces::PerMaterial);
     const glm::dvec3 toX = px.x.position - y.position;
     const double d2 = glm::dot(toX, toX);
     if (d2 <= 0.0) return {};

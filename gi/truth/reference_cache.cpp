@@ -14,7 +14,7 @@ namespace {
 
 constexpr char kMagic[8] = {'V', 'S', 'G', 'L', 'R', 'E', 'F', '1'};
 // Bump when the references' meaning or the file layout changes: older entries then miss.
-constexpr uint32_t kFormatVersion = 3;
+constexpr uint32_t kFormatVersion = 4;  // 4: single-sided back faces bounce no light
 
 struct Header {
   char magic[8];

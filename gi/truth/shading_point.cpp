@@ -5,7 +5,7 @@
 namespace truth {
 
 ShadingPoint shadingPoint(const engine::Scene& scene, const RayHit& hit, glm::dvec3 origin,
-                          glm::dvec3 rayDir) {
+                          glm::dvec3 rayDir, engine::BackFaces backFaces) {
   glm::dvec3 p[3];
   for (int k = 0; k < 3; ++k) p[k] = scene.positions[scene.indices[3 * size_t{hit.triangle} + k]];
   const glm::dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
@@ -20,7 +20,7 @@ ShadingPoint shadingPoint(const engine::Scene& scene, const RayHit& hit, glm::dv
   s.position = p[0] + bc.x * e1 + bc.y * e2;
   s.geometricNormal = glm::normalize(glm::cross(e1, e2));
   if (glm::dot(s.geometricNormal, rayDir) > 0.0) s.geometricNormal = -s.geometricNormal;
-  s.surface = engine::surfaceAt(scene, hit.triangle, bc, rayDir);
+  s.surface = engine::surfaceAt(scene, hit.triangle, bc, rayDir, backFaces);
   return s;
 }
 

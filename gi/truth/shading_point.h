@@ -22,8 +22,11 @@ struct ShadingPoint {
   engine::GBufferSample surface;
 };
 
+// `backFaces` as the resolve: AsFront where the camera sees the point, PerMaterial where the
+// point bounces a light (engine::BackFaces: the back of a single-sided material reflects none).
 ShadingPoint shadingPoint(const engine::Scene& scene, const RayHit& hit, glm::dvec3 origin,
-                          glm::dvec3 rayDir);
+                          glm::dvec3 rayDir,
+                          engine::BackFaces backFaces = engine::BackFaces::AsFront);
 
 // What the camera sees through the centre of pixel `pixel` (row-major index) of `view`: the
 // primary ray the references shade along, and its shading point; nothing on background.

@@ -21,8 +21,8 @@ std::vector<Vpl> rsmViewVpls(const engine::Scene& scene, const EmbreeScene& rays
                              const engine::Light& l, const gi::RsmView& view, uint32_t rsmSize) {
   const engine::ReferenceRaster raster =
       engine::rasterizeReference(scene, view.raster, rsmSize, rsmSize);
-  const engine::GBufferData surface =
-      engine::resolveGBufferReference(scene, view.view, raster.visibility);
+  const engine::GBufferData surface = engine::resolveGBufferReference(
+      scene, view.view, raster.visibility, engine::BackFaces::PerMaterial);
   const std::vector<gi::RsmTexelReference> texels =
       gi::rsmFluxReference(surface, view, gi::lightFluxSource(l));
   const glm::dvec3 origin(view.origin), axis(view.axis);
@@ -42,7 +42,8 @@ std::vector<Vpl> rsmViewVpls(const engine::Scene& scene, const EmbreeScene& rays
     const glm::dvec3 dir = view.perspective ? glm::normalize(t.offset) : axis;
     const glm::dvec3 start = view.perspective ? origin : v.position - dir * glm::dot(t.offset, dir);
     if (const RayHit hit = rays.intersect(start, dir); hit.hit) {
-      const ShadingPoint snapped = shadingPoint(scene, hit, start, dir);
+      const ShadingPoint snapped =
+          shadingPoint(scene, hit, start, dir, engine::BackFaces::PerMaterial);
       v.position = snapped.position;
       v.geometricNormal = snapped.geometricNormal;
     }
@@ -81,6 +82,16 @@ std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, ui
   for (size_t face = 0; face < views.size(); ++face) {
     std::vector<Vpl> own = rsmViewVpls(scene, rays, l, views[face], rsmSize);
     for (Vpl& v : own) v.texel += static_cast<uint32_t>(face * size_t{rsmSize} * rsmSize);
+    vpls.insert(vpls.end(), own.begin(), own.end());
+  }
+  return vpls;
+}
+
+std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays,
+                         std::span<const uint32_t> lights, uint32_t rsmSize) {
+  std::vector<Vpl> vpls;
+  for (uint32_t light : lights) {
+    const std::vector<Vpl> own = rsmVpls(scene, rays, light, rsmSize);
     vpls.insert(vpls.end(), own.begin(), own.end());
   }
   return vpls;

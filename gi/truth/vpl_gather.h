@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <span>
 #include <vector>
 
 #include "embree_scene.h"
@@ -42,6 +43,9 @@ struct Vpl {
 // along the light's ray through it.
 std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, uint32_t light,
                          uint32_t rsmSize);
+// Those of every light in `lights`, one after the other (their gather is the sum of each one's).
+std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays,
+                         std::span<const uint32_t> lights, uint32_t rsmSize);
 
 struct VplGatherImage {
   uint32_t width = 0;

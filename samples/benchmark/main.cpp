@@ -160,29 +160,27 @@ double peakResidentMegabytes() {
 struct SceneRun {
   engine::Scene scene;
   engine::View view;
-  const engine::Light* light = nullptr;
-  uint32_t lightIndex = 0;  // of `light` in scene.lights
+  std::vector<uint32_t> lights;  // the bouncing lights' indices in scene.lights: every one
   std::unique_ptr<engine::SceneGpu> gpuScene;
   std::unique_ptr<engine::GBuffer> gbuffer;
   std::vector<glm::dvec3> reference;  // path-traced indirect light
 };
 
-// `scene` (loaded and checked for a bouncing light before anything ran) on the device.
+// `scene` (loaded and checked for its bouncing lights before anything ran) on the device.
 SceneRun prepareScene(engine::Context& ctx, const bench::Preset& p, const std::string& name,
                       engine::Scene scene, const truth::ReferenceCache& cache) {
   SceneRun r;
   r.scene = std::move(scene);
   r.view = samples::sceneView(r.scene, p.width, p.height);
-  r.light = samples::bouncingLight(r.scene);
+  r.lights = samples::bouncingLights(r.scene);
   r.gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, r.scene));
   r.gbuffer = std::make_unique<engine::GBuffer>(samples::renderGBuffer(ctx, *r.gpuScene, r.view));
   truth::PathTraceSettings trace;
   trace.relativeError = p.referenceNoise;
   trace.progress = true;
   bool fromCache = false;
-  r.lightIndex = static_cast<uint32_t>(r.light - r.scene.lights.data());
   const truth::PathTraceImage image =
-      truth::cachedPathTrace(cache, r.scene, r.view, r.lightIndex, trace, &fromCache);
+      truth::cachedPathTrace(cache, r.scene, r.view, r.lights, trace, &fromCache);
   std::printf("%s: reference %s (%.1f s to trace)\n", name.c_str(),
               fromCache ? "from the cache" : "traced", image.seconds);
   r.reference.resize(image.diffuse.size());
@@ -215,7 +213,7 @@ struct PassSamples {
 // rows see the same drift, so the ratios between them hold.
 std::vector<json> runRows(engine::Context& ctx, const bench::Preset& p, SceneRun& s,
                           const std::vector<gi::Settings>& settings) {
-  const gi::FrameInput input = samples::frameInput(*s.gbuffer, s.view, *s.light);
+  const gi::FrameInput input = samples::frameInput(*s.gbuffer, s.view, s.scene.lights);
   std::vector<std::unique_ptr<gi::IndirectLighting>> lightings;
   for (const gi::Settings& one : settings)
     lightings.push_back(samples::createIndirect(ctx, one, p.width, p.height, *s.gpuScene, s.scene));
@@ -280,7 +278,7 @@ std::vector<json> runRows(engine::Context& ctx, const bench::Preset& p, SceneRun
 // time stands in for the frame, so the charts place what VSGLs approximate beside them.
 json runVplRow(const bench::Preset& p, SceneRun& s, uint32_t rsm) {
   const truth::EmbreeScene rays(s.scene);
-  const std::vector<truth::Vpl> vpls = truth::rsmVpls(s.scene, rays, s.lightIndex, rsm);
+  const std::vector<truth::Vpl> vpls = truth::rsmVpls(s.scene, rays, s.lights, rsm);
   const truth::VplGatherImage g = truth::vplGather(s.scene, rays, s.view, vpls);
   std::vector<glm::dvec3> image(g.diffuse.size());
   for (size_t i = 0; i < image.size(); ++i) image[i] = g.diffuse[i] + g.glossy[i];
@@ -336,9 +334,7 @@ int run(const Options& o) {
     const std::string note =
         samples::applyLightChoice(scenes.back(), o.light, false, float(p.width) / float(p.height));
     if (!note.empty()) std::printf("%s\n", note.c_str());
-    if (!samples::bouncingLight(scenes.back()))
-      throw engine::Error(name +
-                          ": no light to bounce (--light none; auto, sun or headlight add one)");
+    samples::bouncingLights(scenes.back());  // throws for none or too many
   }
   const std::filesystem::path out(o.outDir);
   auto rowFile = [&](const json& identity) { return out / "rows" / (rowKey(identity) + ".json"); };

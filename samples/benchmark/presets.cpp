@@ -31,7 +31,7 @@ Preset preset(const std::string& name) {
                                                "kmeans-2d",
                                                "kmeans-3d",
                                                "vpl"};
-  const std::vector<std::string> allScenes = {"cornell", "checker", "atrium"};
+  const std::vector<std::string> allScenes = {"cornell", "checker", "atrium", "lounge"};
   if (name == "ci")  // one small scene: checks that every method runs and scores, not speed
     return {.name = "ci",
             .scenes = {"cornell"},

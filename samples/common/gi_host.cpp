@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <utility>
 
 #include "engine/rasterizer.h"
@@ -14,8 +15,23 @@ void check(const gi::Status& status) {
   if (!status) throw engine::Error(status.message);
 }
 
-const engine::Light* bouncingLight(const engine::Scene& scene) {
-  return scene.lights.empty() ? nullptr : &scene.lights.front();
+std::vector<uint32_t> bouncingLights(const engine::Scene& scene) {
+  if (scene.lights.empty())
+    throw engine::Error(scene.source +
+                        ": no light to bounce (--light none; auto, sun or headlight add one)");
+  if (scene.lights.size() > gi::kMaxLights)
+    throw engine::Error(scene.source + ": " + std::to_string(scene.lights.size()) +
+                        " lights; the module bounces " + std::to_string(gi::kMaxLights) +
+                        " at most");
+  std::vector<uint32_t> lights(scene.lights.size());
+  for (uint32_t i = 0; i < lights.size(); ++i) lights[i] = i;
+  return lights;
+}
+
+int firstDirectedLight(const engine::Scene& scene) {
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].type != engine::LightType::Point) return int(i);
+  return -1;
 }
 
 float maxReflectance(const engine::Scene& scene) {

@@ -22,9 +22,13 @@ namespace samples {
 // Throws engine::Error with the status's message when it failed.
 void check(const gi::Status& status);
 
-// The light the module bounces: the scene's first light, or null (the module bounces one light
-// per frame).
-const engine::Light* bouncingLight(const engine::Scene& scene);
+// The indices of the lights that bounce: every light of `scene`, as the sample programs give the
+// module all of them. Throws engine::Error naming the scene when it has no light (and the --light
+// choices that add one) or more than gi::kMaxLights, so that no comparison runs unlike with like.
+std::vector<uint32_t> bouncingLights(const engine::Scene& scene);
+// The index of `scene`'s first spot or directional light (a light with one RSM view and a
+// direction), or -1 when it has none.
+int firstDirectedLight(const engine::Scene& scene);
 
 // An upper bound of any surface's reflectance in `scene` (SceneGeometry::maxReflectance): the
 // largest channel of a diffuse albedo, F0 or F90, textures included.

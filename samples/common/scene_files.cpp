@@ -20,7 +20,7 @@ engine::Scene loadScene(const std::string& name) {
   std::filesystem::path path(name);
   if (path.extension() != ".gltf" && path.extension() != ".glb")
     throw engine::Error("--scene: '" + name +
-                        "' is neither a built-in scene (cornell, atrium, checker) nor a "
+                        "' is neither a built-in scene (cornell, atrium, checker, lounge) nor a "
                         ".gltf/.glb file");
   return engine::loadGltf(name);
 }

@@ -58,7 +58,8 @@ struct Options {
 
 const char* usage() {
   return "usage: vsgl_flicker [options]\n"
-         "  --scene NAME|FILE  built-in scene (cornell, atrium, checker) or .gltf/.glb (default "
+         "  --scene NAME|FILE  built-in scene (cornell, atrium, checker, lounge) or .gltf/.glb "
+         "(default "
          "checker)\n"
          "  --motion M         static, orbit (camera), sweep (light) or move (a box) (default "
          "orbit)\n" SAMPLES_LIGHT_USAGE
@@ -211,11 +212,8 @@ int run(const Options& o) {
   const std::string lightNote =
       samples::applyLightChoice(base, o.light, false, float(o.width) / float(o.height));
   if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
-  const engine::Light* light = samples::bouncingLight(base);
-  if (!light)
-    throw engine::Error(o.scene +
-                        ": no light to bounce (--light none; auto, sun or headlight add one)");
-  const auto lightIndex = static_cast<uint32_t>(light - base.lights.data());
+  const std::vector<uint32_t> lights = samples::bouncingLights(base);
+  if (motion == flicker::Motion::Sweep) flicker::sweptLight(base);  // fails before any work
   std::vector<gi::Settings> settings;
   for (const std::string& word : o.methods) settings.push_back(methodSettings(word, o));
   const std::filesystem::path out(o.outDir);
@@ -242,8 +240,7 @@ int run(const Options& o) {
   csv << "frame,method,image_flicker,vsgl_power_change,relative_mse\n";
 
   for (uint32_t t = 0; t < o.frames; ++t) {
-    const flicker::Frame f =
-        flicker::makeFrame(base, lightIndex, motion, t, o.frames, o.width, o.height);
+    const flicker::Frame f = flicker::makeFrame(base, motion, t, o.frames, o.width, o.height);
     if (!gpuScene || motion == flicker::Motion::Move)  // every earlier submission has completed
       gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, f.scene));
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -255,14 +252,13 @@ int run(const Options& o) {
     std::vector<glm::dvec3> reference(size_t{o.width} * o.height);
     if (o.reference == "vpl") {
       const truth::EmbreeScene rays(f.scene);
-      const truth::VplGatherImage g = truth::vplGather(
-          f.scene, rays, f.view, truth::rsmVpls(f.scene, rays, f.lightIndex, o.vplRsm));
+      const truth::VplGatherImage g =
+          truth::vplGather(f.scene, rays, f.view, truth::rsmVpls(f.scene, rays, lights, o.vplRsm));
       for (size_t i = 0; i < reference.size(); ++i) reference[i] = g.diffuse[i] + g.glossy[i];
     } else {
       truth::PathTraceSettings trace;
       trace.relativeError = o.noise;
-      const truth::PathTraceImage p =
-          truth::cachedPathTrace(cache, f.scene, f.view, f.lightIndex, trace);
+      const truth::PathTraceImage p = truth::cachedPathTrace(cache, f.scene, f.view, lights, trace);
       for (size_t i = 0; i < reference.size(); ++i) reference[i] = p.diffuse[i] + p.glossy[i];
     }
     const engine::ImageRgba32f referenceImage =
@@ -282,7 +278,7 @@ int run(const Options& o) {
       reprojection = flicker::reproject(previousGBuffer, previousView, decoded, f.view);
       previousReferenceAligned = flicker::resample(previousReference, reprojection);
     }
-    const gi::FrameInput input = samples::frameInput(gbuffer, f.view, f.scene.lights[f.lightIndex]);
+    const gi::FrameInput input = samples::frameInput(gbuffer, f.view, f.scene.lights);
     for (size_t m = 0; m < o.methods.size(); ++m) {
       if (t == 0) {
         captures.push_back({o.methods[m], samples::createIndirect(ctx, settings[m], o.width,

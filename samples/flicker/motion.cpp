@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "engine/error.h"
+#include "gi_host.h"
 
 namespace flicker {
 namespace {
@@ -69,9 +70,17 @@ Motion parseMotion(const std::string& word) {
   throw engine::Error("--motion: '" + word + "' is not one of static, orbit, sweep, move");
 }
 
-Frame makeFrame(const engine::Scene& base, uint32_t lightIndex, Motion motion, uint32_t t,
-                uint32_t frames, uint32_t width, uint32_t height) {
-  Frame f{base, {}, lightIndex};
+uint32_t sweptLight(const engine::Scene& scene) {
+  const int light = samples::firstDirectedLight(scene);
+  if (light < 0)
+    throw engine::Error("--motion sweep: " + scene.source +
+                        " has no spot or directional light to turn");
+  return uint32_t(light);
+}
+
+Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t frames,
+                uint32_t width, uint32_t height) {
+  Frame f{base, {}};
   const engine::Bounds b = base.bounds();
   const glm::vec3 centre = 0.5f * (b.min + b.max), extent = b.max - b.min;
   const float s = phase(t, frames);
@@ -79,7 +88,7 @@ Frame makeFrame(const engine::Scene& base, uint32_t lightIndex, Motion motion, u
   if (motion == Motion::Orbit)
     camera.cameraToWorld = aboutVertical(centre, kOrbitDegrees * s) * camera.cameraToWorld;
   if (motion == Motion::Sweep) {
-    engine::Light& light = f.scene.lights.at(lightIndex);
+    engine::Light& light = f.scene.lights.at(sweptLight(base));
     light.direction = glm::normalize(glm::vec3(aboutVertical(glm::vec3(0.0f), kSweepDegrees * s) *
                                                glm::vec4(light.direction, 0.0f)));
   }

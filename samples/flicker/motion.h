@@ -4,7 +4,8 @@
 //   static  nothing moves (every flicker figure must be exactly 0: the pipeline is deterministic)
 //   orbit   the camera turns 30 degrees about the vertical axis through the scene's centre: the
 //           view-dependent BRSM PDF changes, the RSM does not
-//   sweep   the bounced light turns 20 degrees about the vertical axis: the RSM itself changes
+//   sweep   the first spot or directional light turns 20 degrees about the vertical axis: its
+//           RSM itself changes (every light bounces; the others stay)
 //   move    a box, added to the scene, slides across the floor (a third of the scene's width)
 #pragma once
 
@@ -22,14 +23,17 @@ enum class Motion { Static, Orbit, Sweep, Move };
 Motion parseMotion(const std::string& word);
 
 struct Frame {
-  engine::Scene scene;  // with the light moved (sweep) or the box placed (move)
+  engine::Scene scene;  // with the light turned (sweep) or the box placed (move)
   engine::View view;
-  uint32_t lightIndex = 0;  // of the bounced light in scene.lights
 };
 
-// Frame t of `frames` (t = 0 .. frames - 1) of `motion` applied to `base`, whose bounced light is
-// base.lights[lightIndex], seen at width x height.
-Frame makeFrame(const engine::Scene& base, uint32_t lightIndex, Motion motion, uint32_t t,
-                uint32_t frames, uint32_t width, uint32_t height);
+// The index of the light sweep turns: the first spot or directional light of `scene` (a point
+// light has no direction to turn). Throws engine::Error naming the scene when it has none.
+uint32_t sweptLight(const engine::Scene& scene);
+
+// Frame t of `frames` (t = 0 .. frames - 1) of `motion` applied to `base`, seen at
+// width x height.
+Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t frames,
+                uint32_t width, uint32_t height);
 
 }  // namespace flicker

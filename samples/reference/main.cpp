@@ -12,7 +12,7 @@
 #include "embree_scene.h"
 #include "engine/error.h"
 #include "engine/image_metrics.h"
-#include "gi/indirect_lighting.h"
+#include "gi_host.h"
 #include "path_tracer.h"
 #include "program_exit.h"
 #include "scene_files.h"
@@ -36,7 +36,8 @@ struct Options {
 
 const char* usage() {
   return "usage: vsgl_reference [options]\n"
-         "  --scene NAME|FILE    built-in scene (cornell, atrium, checker) or .gltf/.glb (default "
+         "  --scene NAME|FILE    built-in scene (cornell, atrium, checker, lounge) or .gltf/.glb "
+         "(default "
          "cornell)\n"
          "  --out DIR            output directory (default out)\n"
          "  --width N --height N image size in pixels, 1..8192 (default "
@@ -93,21 +94,6 @@ Options parseOptions(int argc, char** argv) {
   return o;
 }
 
-// The lights that bounce: all of them, as vsgl_render gives the module every light (up to
-// gi::kMaxLights: a file with more is refused here rather than compared unlike with like).
-std::vector<uint32_t> bouncingLights(const engine::Scene& scene) {
-  if (scene.lights.empty())
-    throw engine::Error("--scene: '" + scene.source +
-                        "' has no light to bounce (--light none; auto, sun or headlight add one)");
-  if (scene.lights.size() > gi::kMaxLights)
-    throw engine::Error("--scene: '" + scene.source + "' has " +
-                        std::to_string(scene.lights.size()) + " lights; the module bounces " +
-                        std::to_string(gi::kMaxLights) + " at most");
-  std::vector<uint32_t> lights(scene.lights.size());
-  for (uint32_t i = 0; i < lights.size(); ++i) lights[i] = i;
-  return lights;
-}
-
 // RMSE, relative MSE and PSNR of `test` against the reference's indirect light, and a
 // false-colour picture of the error (scale: the 99th percentile of the absolute error).
 void printScore(const std::string& name, const std::vector<glm::dvec3>& test,
@@ -132,7 +118,7 @@ int run(const Options& o) {
   const std::string lightNote =
       samples::applyLightChoice(scene, o.light, false, float(o.width) / float(o.height));
   if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
-  const std::vector<uint32_t> lights = bouncingLights(scene);
+  const std::vector<uint32_t> lights = samples::bouncingLights(scene);
   const engine::View view = samples::sceneView(scene, o.width, o.height);
   samples::createOutputDirectory(o.outDir);
   std::printf("scene: %s, %u triangles, %ux%u, %zu lights bounce, noise target %.3g\n",
@@ -186,11 +172,7 @@ int run(const Options& o) {
   for (size_t i = 0; i < indirect.size(); ++i) indirect[i] = r.diffuse[i] + r.glossy[i];
   if (o.vplRsm > 0) {
     const truth::EmbreeScene rays(scene);
-    std::vector<truth::Vpl> vpls;
-    for (uint32_t light : lights) {
-      const std::vector<truth::Vpl> own = truth::rsmVpls(scene, rays, light, o.vplRsm);
-      vpls.insert(vpls.end(), own.begin(), own.end());
-    }
+    const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, rays, lights, o.vplRsm);
     const truth::VplGatherImage g = truth::vplGather(scene, rays, view, vpls, o.trace.threads);
     std::vector<glm::dvec3> gathered(indirect.size());
     for (size_t i = 0; i < gathered.size(); ++i) gathered[i] = g.diffuse[i] + g.glossy[i];

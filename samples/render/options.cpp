@@ -15,7 +15,8 @@ using samples::parseFloat;
 using samples::parseUint;
 const char* usage() {
   return "usage: vsgl_render [options]\n"
-         "  --scene NAME|FILE    built-in scene (cornell, atrium, checker) or .gltf/.glb (default "
+         "  --scene NAME|FILE    built-in scene (cornell, atrium, checker, lounge) or .gltf/.glb "
+         "(default "
          "cornell)\n"
          "  --out DIR            output directory (default out)\n"
          "  --width N --height N image size in pixels, 1..8192 (default 640x360)\n"

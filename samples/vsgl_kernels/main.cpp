@@ -24,6 +24,7 @@
 #include "engine/image_io.h"
 #include "engine/scene_gpu.h"
 #include "engine/view.h"
+#include "gi_host.h"
 #include "passes/brsm_pdf.h"
 #include "program_exit.h"
 #include "reference/fis_coverage.h"
@@ -48,8 +49,8 @@ struct Options {
 
 const char* usage() {
   return "usage: vsgl_kernels [options]\n"
-         "  --scene NAME   built-in scene (cornell, atrium, checker); its first light (default "
-         "checker)\n"
+         "  --scene NAME   built-in scene (cornell, atrium, checker, lounge); its first spot or\n"
+         "                 directional light (default checker)\n"
          "  --out DIR      output directory for <scene>_kernels.png (default out)\n"
          "  --rsm N        RSM texels per side, a power of two in 16..2048 (default 128)\n"
          "  --count N      VSGLs per rule, 1..65536 (default 256)\n"
@@ -99,7 +100,8 @@ Options parseOptions(int argc, char** argv) {
   }
   auto names = engine::builtinSceneNames();
   if (std::find(names.begin(), names.end(), o.scene) == names.end())
-    throw Error("--scene: '" + o.scene + "' is not a built-in scene (cornell, atrium, checker)");
+    throw Error("--scene: '" + o.scene +
+                "' is not a built-in scene (cornell, atrium, checker, lounge)");
   // The attribute pyramids and the 4^l / M of both rules need a power-of-two square.
   if (!std::has_single_bit(o.rsmSize))
     throw Error("--rsm: " + std::to_string(o.rsmSize) + " is not a power of two");
@@ -213,7 +215,7 @@ class Frame {
   Frame(engine::Context& ctx, const Options& o, const engine::Scene& scene)
       : o_(o),
         scene_(engine::uploadScene(ctx, scene)),
-        light_(scene.lights.at(0)),
+        light_(scene.lights.at(size_t(samples::firstDirectedLight(scene)))),
         camera_(scene.cameras.at(0)),
         view_(gi::makeRsmView(scene, light_, o.rsmSize)),
         cameraView_(engine::cameraView(camera_, o.width, o.height)),

@@ -83,9 +83,19 @@ void main() {
   vec3 normal = normalize(nA.xyz * (1.0 - bc.x - bc.y) + nB.xyz * bc.x + nC.xyz * bc.y);
   // Two-sided shading: a surface seen from behind is lit as its front, so flip the normal
   // toward the viewer using the geometric normal (interpolated normals can disagree).
-  if (dot(cross(b - a, c - a), dir) > 0.0) normal = -normal;
+  bool back = dot(cross(b - a, c - a), dir) > 0.0;
+  if (back) normal = -normal;
 
   uint material = triangleMaterial[tri];
+  // In a light's view the back of a single-sided surface is no surface (glTF doubleSided false):
+  // it keeps its depth, so it shadows, and reflects nothing.
+  if (back && pc.backFaces == 1u && materials[material].doubleSided == 0u) {
+    imageStore(outDepth, coord, vec4(depth));
+    imageStore(outNormal, coord, vec4(octEncode(normal), 0.0, 0.0));
+    imageStore(outDiffuse, coord, vec4(0.0, 0.0, 0.0, 1.0));
+    imageStore(outSpecular, coord, vec4(0.0));
+    return;
+  }
   vec4 base = materials[material].baseColorFactor;
   int baseLayer = materials[material].baseColorLayer;
   int mrLayer = materials[material].metallicRoughnessLayer;

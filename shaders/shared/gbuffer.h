@@ -20,7 +20,9 @@ SHARED_BEGIN
 struct GBufferResolvePush {
   mat4 invViewProj;
   uvec2 viewport;
-  uint pad0;
+  // engine::BackFaces: 0 = every triangle seen from behind shades as its front (camera views);
+  // 1 = a single-sided material's back face reflects nothing (light views: the RSM).
+  uint backFaces;
   uint pad1;
 };
 

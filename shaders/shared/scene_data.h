@@ -21,11 +21,17 @@ struct SceneMaterial {
   float roughness;  // perceptual roughness [0, 1]
   int baseColorLayer;
   int metallicRoughnessLayer;
+  // glTF doubleSided: 1 = both faces reflect light; 0 = the back face reflects none in a light's
+  // view (GBufferResolvePush::lightView), though it still blocks the light.
+  uint doubleSided;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 SHARED_END
 
 SHARED_ASSERT_SIZE(SceneVertex, 32);
-SHARED_ASSERT_SIZE(SceneMaterial, 48);
+SHARED_ASSERT_SIZE(SceneMaterial, 64);
 SHARED_ASSERT_OFFSET(SceneMaterial, metallic, 32);
 #endif

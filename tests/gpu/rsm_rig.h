@@ -8,6 +8,7 @@
 
 #include "engine/builtin_scenes.h"
 #include "engine/rasterizer.h"
+#include "gi_host.h"
 #include "passes/mip_pyramid.h"
 #include "passes/rsm.h"
 #include "passes/vsgl_attributes.h"
@@ -15,13 +16,14 @@
 namespace testing_gpu {
 
 struct RsmRig {
-  // Light 0 of built-in scene `name`, an RSM of size^2 texels and its attribute pyramids.
+  // The first spot or directional light of built-in scene `name` (one RSM view; the lounge's
+  // point light comes first), an RSM of size^2 texels and its attribute pyramids.
   RsmRig(engine::Context& ctx, const std::string& name, uint32_t size)
       : RsmRig(ctx, engine::makeBuiltinScene(name), size) {}
-  // The same for any scene: its light 0.
+  // The same for any scene with a spot or directional light.
   RsmRig(engine::Context& ctx, engine::Scene sceneIn, uint32_t size)
       : scene(std::move(sceneIn)),
-        light(scene.lights.at(0)),
+        light(scene.lights.at(size_t(samples::firstDirectedLight(scene)))),
         view(gi::makeRsmView(scene, light, size)),
         gpuScene(std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, scene))),
         rasterizer(std::make_unique<engine::Rasterizer>(ctx)),

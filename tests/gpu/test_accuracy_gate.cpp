@@ -12,6 +12,7 @@
 #include "engine/image_metrics.h"
 #include "gi_host.h"
 #include "gpu_fixture.h"
+#include "light_rigs.h"
 #include "path_tracer.h"
 #include "reference_cache.h"
 #include "room_shell.h"
@@ -28,15 +29,18 @@ constexpr uint32_t kWidth = 160, kHeight = 90;
 // relMSE must fall from N = 64 to 512 by the measured ratio + 0.1 (the target is 0.6).
 struct Bounds {
   const char* scene;
-  double relativeMse512;  // measured 0.00455, 0.00620, 0.00359
-  double meanError512;    // |mean ratio - 1|: measured 0.025, 0.046, 0.080
-  double convergence;     // relMSE(512) / relMSE(64): measured 0.37, 0.28, 0.59
+  double relativeMse512;  // measured 0.00455, 0.00329, 0.00359, 0.00511
+  double meanError512;    // |mean ratio - 1|: measured 0.025, 0.035, 0.080, 0.082
+  double convergence;     // relMSE(512) / relMSE(64): measured 0.37, 0.28, 0.59, 0.40
   bool leakFails;         // the planar leak (planarEmitters off) must exceed the relMSE bound
 };
 constexpr Bounds kBounds[] = {
     {"cornell", 0.0052, 0.055, 0.47, true},
-    {"atrium", 0.0071, 0.076, 0.38, true},
+    {"atrium", 0.0038, 0.065, 0.38, true},
     {"checker", 0.0041, 0.110, 0.69, false},  // little planar leak: 0.00437 off
+    // Four lights of all three types: 1.34x the three one-light scenes' mean relMSE (the
+    // many-lights target is 1.5x); planar emitters off measures 0.00575.
+    {"lounge", 0.0059, 0.112, 0.50, false},
 };
 
 struct Score {
@@ -86,6 +90,22 @@ class AccuracyTest : public testing_gpu::GpuTest {
     return {m.relativeMse, mean / m.referenceMean};
   }
 
+  // The defaults at N = 64 and 512 against the path tracer, printed as `what`, held to the
+  // bounds: relMSE at 512, |mean ratio - 1| at 512, relMSE(512) / relMSE(64).
+  void expectDefaultsWithin(const char* what, double relativeMse512, double meanError512,
+                            double convergence) {
+    gi::Settings settings;
+    settings.vsglCount = 64;
+    const Score few = score(settings);
+    settings.vsglCount = 512;
+    const Score many = score(settings);
+    std::printf("%s: relMSE %.5f (N = 64), %.5f (N = 512); mean ratio %.4f, %.4f\n", what,
+                few.relativeMse, many.relativeMse, few.meanRatio, many.meanRatio);
+    EXPECT_LE(many.relativeMse, relativeMse512);
+    EXPECT_LE(std::abs(many.meanRatio - 1.0), meanError512);
+    EXPECT_LE(many.relativeMse, convergence * few.relativeMse) << "more VSGLs must buy accuracy";
+  }
+
   engine::Scene scene_;
   engine::View view_;
   std::unique_ptr<engine::SceneGpu> gpuScene_;
@@ -129,17 +149,18 @@ TEST_P(AccuracyGate, IndirectLightAgainstPathTracer) {
 
 // The VPL baseline (docs/techniques/vpl-baseline.md), what the benchmark compares the module
 // with, held to its own measured accuracy with the margins above: relMSE at N = 512 (measured
-// 0.00546, 0.00138, 0.00797), its mean (|ratio - 1| measured 0.007, 0.024, 0.054) and its
-// convergence from N = 64 (measured 0.57, 0.37, 0.70). A baseline that silently lost accuracy
-// would make the module look better than it is.
+// 0.00546, 0.00171, 0.00797, 0.00490), its mean (|ratio - 1| measured 0.007, 0.001, 0.054,
+// 0.038) and its convergence from N = 64 (measured 0.57, 0.46, 0.70, 0.37). A baseline that
+// silently lost accuracy would make the module look better than it is.
 struct VplBounds {
   const char* scene;
   double relativeMse512, meanError512, convergence;
 };
 constexpr VplBounds kVplBounds[] = {
     {"cornell", 0.0063, 0.039, 0.67},
-    {"atrium", 0.0016, 0.054, 0.47},
+    {"atrium", 0.0020, 0.031, 0.56},
     {"checker", 0.0092, 0.084, 0.80},
+    {"lounge", 0.0056, 0.068, 0.47},
 };
 
 TEST_P(AccuracyGate, VplBaselineAgainstPathTracer) {
@@ -161,7 +182,7 @@ TEST_P(AccuracyGate, VplBaselineAgainstPathTracer) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, AccuracyGate,
-                         ::testing::Values("cornell", "atrium", "checker"));
+                         ::testing::Values("cornell", "atrium", "checker", "lounge"));
 
 // A planner decision that leaves a pass out must not cost more accuracy than it saves. The
 // planner skips the ISMs when nothing can occlude (SceneGeometry::canOcclude = false: the
@@ -170,8 +191,10 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, AccuracyGate,
 // the room, and without ISMs only the light model (planar emitters, a flat cluster sends
 // nothing behind its plane) keeps it out. The Cornell box's walls and floor without the ceiling
 // and the boxes (testing_gpu::roomShell), a sun from above the right wall (+x) at 40 degrees from
-// the vertical. Measured at N = 512: relMSE 0.0032 with the ISMs skipped, 0.0036 with them (means
-// 0.962, 0.942); with planar emitters off (checked by hand) 0.036 against 0.022, which fails.
+// the vertical. The walls are double-sided here: a single-sided wall's outer face reflects nothing
+// in the light's view (engine::BackFaces), which would take the hard case away. Measured at
+// N = 512: relMSE 0.0032 with the ISMs skipped, 0.0036 with them (means 0.962, 0.942); with
+// planar emitters off (checked by hand) 0.036 against 0.022, which fails.
 TEST_F(AccuracyTest, SkippingTheIsmsInAnOpenRoomSavesMoreErrorThanItCosts) {
   const engine::Scene cornell = engine::makeBuiltinScene("cornell");
   engine::Scene room = testing_gpu::roomShell(cornell, true);
@@ -181,6 +204,7 @@ TEST_F(AccuracyTest, SkippingTheIsmsInAnOpenRoomSavesMoreErrorThanItCosts) {
   sun.direction = glm::normalize(glm::vec3(-std::sin(0.7f), -std::cos(0.7f), 0.0f));
   sun.intensity = 3.0f;
   room.lights = {sun};
+  for (engine::Material& m : room.materials) m.doubleSided = true;
   ASSERT_LT(room.triangleCount(), cornell.triangleCount());
   ASSERT_FALSE(samples::canOcclude(room)) << "the open room must be convex for the planner";
   prepare(room);
@@ -213,31 +237,19 @@ TEST_F(AccuracyTest, PointLightAgainstPathTracer) {
   light.type = engine::LightType::Point;
   light.intensity *= 0.25f;
   prepare(cornell);
-  gi::Settings settings;
-  settings.vsglCount = 64;
-  const Score few = score(settings);
-  settings.vsglCount = 512;
-  const Score many = score(settings);
-  std::printf("cornell, point light: relMSE %.5f (N = 64), %.5f (N = 512); mean ratio %.4f, %.4f\n",
-              few.relativeMse, many.relativeMse, few.meanRatio, many.meanRatio);
-  EXPECT_LE(many.relativeMse, 0.0155);
-  EXPECT_LE(std::abs(many.meanRatio - 1.0), 0.113);
-  EXPECT_LE(many.relativeMse, 0.56 * few.relativeMse) << "more VSGLs must buy accuracy";
+  expectDefaultsWithin("cornell, point light", 0.0155, 0.113, 0.56);
 }
 
 // Lights of all three kinds at once (docs/techniques/many-lights.md): the Cornell box's spot, a
 // point light in the middle of the room at a quarter of its intensity, and a sun through the
-// open front, against the path tracer bouncing all three. Measured: relMSE 0.0603 (N = 64),
-// 0.0226 (N = 512), mean ratio 0.795, 0.909. The target, 1.5x the single-light scenes'
-// relMSE at N = 512, is not met (4.9x the Cornell box's spot alone): the point light's contact
-// lines (PointLightAgainstPathTracer) and the sun's small lit patch inside the box, seen through
-// its open front, are the error. Bounds with the gate's margins.
+// open front, against the path tracer bouncing all three. Measured: relMSE 0.0596 (N = 64),
+// 0.0228 (N = 512), mean ratio 0.787, 0.900 (4.9x the Cornell box's spot alone, where the
+// lounge of the gate is 1.34x the one-light scenes): the point light's contact lines
+// (PointLightAgainstPathTracer) and the sun's small lit patch inside the box, seen through its
+// open front, are the error. Bounds with the gate's margins.
 TEST_F(AccuracyTest, ThreeLightsAgainstPathTracer) {
   engine::Scene cornell = engine::makeBuiltinScene("cornell");
-  engine::Light point = cornell.lights.at(0);
-  point.type = engine::LightType::Point;
-  point.position = glm::vec3(0.0f, 1.0f, 0.0f);
-  point.intensity *= 0.25f;
+  const engine::Light point = testing_gpu::middlePointLight(cornell);
   engine::Light sun;
   sun.name = "sun";
   sun.type = engine::LightType::Directional;
@@ -246,17 +258,7 @@ TEST_F(AccuracyTest, ThreeLightsAgainstPathTracer) {
   cornell.lights.push_back(point);
   cornell.lights.push_back(sun);
   prepare(cornell);
-  gi::Settings settings;
-  settings.vsglCount = 64;
-  const Score few = score(settings);
-  settings.vsglCount = 512;
-  const Score many = score(settings);
-  std::printf(
-      "cornell, three lights: relMSE %.5f (N = 64), %.5f (N = 512); mean ratio %.4f, %.4f\n",
-      few.relativeMse, many.relativeMse, few.meanRatio, many.meanRatio);
-  EXPECT_LE(many.relativeMse, 0.026);
-  EXPECT_LE(std::abs(many.meanRatio - 1.0), 0.121);
-  EXPECT_LE(many.relativeMse, 0.47 * few.relativeMse) << "more VSGLs must buy accuracy";
+  expectDefaultsWithin("cornell, three lights", 0.026, 0.121, 0.47);
 }
 
 }  // namespace

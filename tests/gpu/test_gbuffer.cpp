@@ -52,7 +52,8 @@ struct GpuResolve {
 
 class GBufferTest : public testing_gpu::GpuTest {
  protected:
-  GpuResolve resolve(const Scene& scene, const engine::View& view) {
+  GpuResolve resolve(const Scene& scene, const engine::View& view,
+                     engine::BackFaces backFaces = engine::BackFaces::AsFront) {
     engine::SceneGpu gpuScene = engine::uploadScene(ctx(), scene);
     engine::Rasterizer rasterizer(ctx());
     engine::GBufferResolve resolvePass(ctx());
@@ -61,7 +62,7 @@ class GBufferTest : public testing_gpu::GpuTest {
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
       rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, view.width, view.height});
-      resolvePass.record(cmd, gpuScene, visibility, view, g);
+      resolvePass.record(cmd, gpuScene, visibility, view, g, nullptr, backFaces);
     });
     GpuResolve out;
     out.visibility = visibility.readbackAs<uint64_t>(ctx());
@@ -148,6 +149,38 @@ TEST_P(GBufferScenes, MatchesReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(GBuffer, GBufferScenes, ::testing::ValuesIn(engine::builtinSceneNames()));
+
+// The lounge seen from behind its back wall, whose single-sided plaster faces into the room. A
+// light's view (BackFaces::PerMaterial) keeps the wall's depth and blackens it; a camera view,
+// or a double-sided material, shows it as its front. GPU and twin agree in both.
+TEST_F(GBufferTest, LightViewBlackensSingleSidedBackFaces) {
+  Scene scene = engine::makeBuiltinScene("lounge");
+  const glm::mat4 viewMatrix =
+      engine::lookAlong({0.0f, 1.2f, -5.0f}, {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f});
+  const engine::View view = engine::makeView(
+      viewMatrix, engine::perspectiveVulkan(0.69f, 1.5f, 0.05f, 0.0f), kWidth, kHeight);
+  for (const bool doubleSided : {false, true}) {
+    for (engine::Material& m : scene.materials) m.doubleSided = doubleSided;
+    for (const engine::BackFaces mode :
+         {engine::BackFaces::AsFront, engine::BackFaces::PerMaterial}) {
+      SCOPED_TRACE(std::string(doubleSided ? "double" : "single") + "-sided, " +
+                   (mode == engine::BackFaces::AsFront ? "camera view" : "light view"));
+      GpuResolve gpu = resolve(scene, view, mode);
+      GBufferData cpu = engine::resolveGBufferReference(scene, view, gpu.visibility, mode);
+      Comparison c = compare(gpu, cpu);
+      EXPECT_EQ(c.failures, 0u) << "first: " << c.firstFailure;
+      const bool black = mode == engine::BackFaces::PerMaterial && !doubleSided;
+      size_t surface = 0, reflecting = 0;
+      for (const engine::GBufferSample& s : gpu.gbuffer.samples) {
+        if (s.background()) continue;
+        ++surface;
+        reflecting += glm::length(s.diffuse) + glm::length(s.f0) + s.f90 > 0.0;
+      }
+      EXPECT_GT(surface, kWidth * kHeight / 2);  // the wall fills most of the view
+      EXPECT_EQ(reflecting, black ? 0u : surface);
+    }
+  }
+}
 
 TEST_F(GBufferTest, CameraSeeingNothingGivesBackground) {
   Scene scene = engine::makeBuiltinScene("cornell");

@@ -66,15 +66,7 @@ class IndirectLightingApiTest : public testing_gpu::GpuTest {
     in.camera = {view_.view, view_.proj};
     const engine::Light& light = scene_.lights.at(0);
     EXPECT_EQ(light.type, engine::LightType::Spot);
-    gi::Light spot;
-    spot.type = gi::Light::Type::Spot;
-    spot.position = light.position;
-    spot.direction = light.direction;
-    spot.color = light.color;
-    spot.intensity = light.intensity;
-    spot.innerConeAngle = light.innerConeAngle;
-    spot.outerConeAngle = light.outerConeAngle;
-    in.lights = {spot};
+    in.lights = {samples::apiLight(light)};
     return in;
   }
 

@@ -12,6 +12,7 @@
 #include "embree_scene.h"
 #include "engine/builtin_scenes.h"
 #include "engine/gbuffer_reference.h"
+#include "light_rigs.h"
 #include "mirror_planes.h"
 #include "path_tracer.h"
 #include "reference/rsm_reference.h"
@@ -368,11 +369,7 @@ TEST(PathTracer, PointLightAgreesWithTheVplGather) {
 // the two within 4 standard errors of the difference (three independent runs).
 TEST(PathTracer, TwoLightsBounceAsTheSumOfEach) {
   engine::Scene scene = engine::makeBuiltinScene("cornell");
-  engine::Light point = scene.lights.at(0);
-  point.type = engine::LightType::Point;
-  point.position = glm::vec3(0.0f, 1.0f, 0.0f);
-  point.intensity *= 0.25f;
-  scene.lights.push_back(point);
+  scene.lights.push_back(testing_gpu::middlePointLight(scene));
   const truth::EmbreeScene rays(scene);
   const engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
   truth::PathTraceSettings s;
@@ -394,4 +391,69 @@ TEST(PathTracer, TwoLightsBounceAsTheSumOfEach) {
   EXPECT_LT(std::abs(both - each), 4.0 * std::sqrt(vBoth + vEach));
 }
 
+// The back of a single-sided surface bounces no light (engine::BackFaces), in the path tracer
+// and in the VPL gather alike. The Cornell box's floor turned over (its front facing down, so the
+// spot lights its back): single-sided, it bounces nothing and the image loses the floor's share
+// of the bounce; double-sided, it bounces as the floor the right way up. Summed over the image:
+// the double-sided turned floor within 4 standard errors of the original; the single-sided one
+// below 90 % of it (measured 0.64). The gather's VPLs on the single-sided turned floor carry no
+// reflectance and the others are those of the original, exactly.
+TEST(PathTracer, BackOfASingleSidedSurfaceBouncesNothing) {
+  const engine::Scene cornell = engine::makeBuiltinScene("cornell");
+  engine::Scene turned = cornell;
+  for (size_t t = 0; t < turned.triangleCount(); ++t) {
+    uint32_t* idx = &turned.indices[3 * t];
+    bool floor = true;
+    for (int k = 0; k < 3; ++k) floor = floor && std::abs(turned.positions[idx[k]].y) < 1e-6f;
+    if (!floor) continue;
+    std::swap(idx[1], idx[2]);
+    for (int k = 0; k < 3; ++k) turned.normals[idx[k]] = glm::vec3(0.0f, -1.0f, 0.0f);
+  }
+  const engine::View view = engine::cameraView(cornell.cameras.front(), kWidth, kHeight);
+  truth::PathTraceSettings s;
+  s.relativeError = 0.03;
+  auto traced = [&](const engine::Scene& scene, double& variance) {
+    const truth::PathTraceImage image =
+        truth::pathTrace(scene, truth::EmbreeScene(scene), view, 0, s);
+    double total = 0.0;
+    for (size_t i = 0; i < image.diffuse.size(); ++i) {
+      total += gi::luminance709(image.diffuse[i] + image.glossy[i]);
+      variance += image.standardError[i] * image.standardError[i];
+    }
+    return total;
+  };
+  double vOriginal = 0.0, vSingle = 0.0, vDouble = 0.0;
+  const double original = traced(cornell, vOriginal);
+  const double single = traced(turned, vSingle);
+  const std::vector<truth::Vpl> singleVpls =
+      truth::rsmVpls(turned, truth::EmbreeScene(turned), 0, 32);
+  for (engine::Material& m : turned.materials) m.doubleSided = true;
+  const double twoSided = traced(turned, vDouble);
+  std::printf(
+      "turned floor: single-sided %.4f of the original, double-sided %.4f (%.2f standard "
+      "errors)\n",
+      single / original, twoSided / original,
+      std::abs(twoSided - original) / std::sqrt(vDouble + vOriginal));
+  ASSERT_GT(original, 0.0);
+  EXPECT_LT(std::abs(twoSided - original), 4.0 * std::sqrt(vDouble + vOriginal));
+  EXPECT_LT(single, 0.9 * original);
+
+  const std::vector<truth::Vpl> originalVpls =
+      truth::rsmVpls(cornell, truth::EmbreeScene(cornell), 0, 32);
+  ASSERT_EQ(singleVpls.size(), originalVpls.size());  // the turned floor still takes the light
+  size_t onFloor = 0;
+  for (size_t i = 0; i < singleVpls.size(); ++i) {
+    const truth::Vpl &a = singleVpls[i], &b = originalVpls[i];
+    if (std::abs(b.position.y) < 1e-6) {
+      ++onFloor;
+      EXPECT_EQ(a.diffuse, glm::dvec3(0.0)) << "VPL " << i;
+      EXPECT_EQ(a.f0, glm::dvec3(0.0)) << "VPL " << i;
+      EXPECT_EQ(a.f90, 0.0) << "VPL " << i;
+    } else {
+      EXPECT_EQ(a.diffuse, b.diffuse) << "VPL " << i;
+      EXPECT_EQ(a.f0, b.f0) << "VPL " << i;
+    }
+  }
+  EXPECT_GT(onFloor, singleVpls.size() / 10);
+}
 }  // namespace

@@ -252,12 +252,13 @@ INSTANTIATE_TEST_SUITE_P(Builtin, BuiltinScene, ::testing::ValuesIn(engine::buil
 
 TEST(BuiltinScenes, NamesAndUnknownName) {
   EXPECT_EQ(engine::builtinSceneNames(),
-            (std::vector<std::string>{"cornell", "atrium", "checker"}));
+            (std::vector<std::string>{"cornell", "atrium", "checker", "lounge"}));
   try {
     engine::makeBuiltinScene("sponza");
     FAIL() << "no error";
   } catch (const engine::Error& e) {
-    EXPECT_STREQ(e.what(), "unknown built-in scene 'sponza' (choices: cornell, atrium, checker)");
+    EXPECT_STREQ(e.what(),
+                 "unknown built-in scene 'sponza' (choices: cornell, atrium, checker, lounge)");
   }
 }
 
@@ -299,6 +300,42 @@ TEST(BuiltinScenes, CheckerAlternatesGlossyAndRough) {
   }
   EXPECT_GT(glossy, 500u);
   EXPECT_EQ(glossy, rough);
+}
+
+TEST(BuiltinScenes, LoungeHasEveryLightTypeAndTheSunEntersByTheWindow) {
+  const engine::Scene scene = engine::makeBuiltinScene("lounge");
+  const engine::Light* sun = nullptr;
+  std::vector<glm::vec3> spotColours;
+  int points = 0;
+  for (const engine::Light& l : scene.lights) {
+    if (l.type == engine::LightType::Directional) sun = &l;
+    if (l.type == engine::LightType::Spot) spotColours.push_back(l.color);
+    if (l.type == engine::LightType::Point) ++points;
+  }
+  ASSERT_NE(sun, nullptr);
+  EXPECT_EQ(points, 1);
+  ASSERT_EQ(spotColours.size(), 2u);
+  EXPECT_GT(glm::length(spotColours[0] - spotColours[1]), 0.3f);  // visibly different colours
+
+  // Floor points on a 10 cm grid that see the sun: some do, and each one's ray towards the sun
+  // leaves the room through the window in the left wall (x = -2.4, z in [-1, 0], y in
+  // [0.9, 1.9]), never through the open front or a wall.
+  int lit = 0;
+  for (float x = -2.35f; x < 2.4f; x += 0.1f) {
+    for (float z = -1.55f; z < 1.6f; z += 0.1f) {
+      const glm::vec3 p(x, 1e-3f, z);
+      const glm::vec3 towardsSun = -sun->direction;
+      if (firstHit(scene, p, towardsSun)) continue;
+      ++lit;
+      const float t = (-2.4f - p.x) / towardsSun.x;
+      const glm::vec3 atWall = p + t * towardsSun;
+      EXPECT_GE(atWall.y, 0.9f - 1e-3f) << x << "," << z;
+      EXPECT_LE(atWall.y, 1.9f + 1e-3f) << x << "," << z;
+      EXPECT_GE(atWall.z, -1.0f - 1e-3f) << x << "," << z;
+      EXPECT_LE(atWall.z, 0.0f + 1e-3f) << x << "," << z;
+    }
+  }
+  EXPECT_GT(lit, 40);  // the patch is about 1 m^2: ~100 grid points, less the sofa's shadow
 }
 
 TEST(BuiltinScenes, DefaultCameraFramesTheBounds) {

@@ -9,6 +9,9 @@
 //   checker: a floor of 24 x 24 tiles alternating very glossy and rough diffuse, a back and a
 //            side wall, lit by a spot at a grazing angle: high-frequency, view-dependent
 //            reflection for testing guided sampling.
+//   lounge:  a 4.8 x 3.2 m living room with a sofa, a cabinet and a table, lit by one light
+//            of each type: a warm point light (a lamp), a cool and a red-orange ceiling spot,
+//            and a sun through a window in the left wall. The built-in many-lights case.
 #pragma once
 
 #include <string>
@@ -18,7 +21,7 @@
 
 namespace engine {
 
-// {"cornell", "atrium", "checker"}.
+// {"cornell", "atrium", "checker", "lounge"}.
 std::vector<std::string> builtinSceneNames();
 
 // Scene::source is "builtin:<name>". Throws engine::Error for an unknown name.

@@ -21,11 +21,20 @@ struct GBuffer {
 // Creates the images in GENERAL layout, ready for storage writes and reads.
 GBuffer createGBuffer(Context& ctx, uint32_t width, uint32_t height);
 
+// What a triangle seen from behind shows. A camera view shades it as its front (two-sided
+// shading, as the host's direct light does). A light's view (the RSM) follows glTF's
+// doubleSided: the back of a single-sided material is no surface, so it reflects nothing
+// (diffuse and specular 0, roughness 1) while its depth still shadows. A room built of
+// single-sided walls then bounces no light from the outside of its walls into itself
+// (docs/techniques/rsm.md, "Back faces").
+enum class BackFaces : uint32_t { AsFront = 0, PerMaterial = 1 };
+
 class GBufferResolve {
  public:
   explicit GBufferResolve(Context& ctx);
   void record(VkCommandBuffer cmd, const SceneGpu& scene, const Buffer& visibility,
-              const View& view, GBuffer& gbuffer, GpuProfiler* profiler = nullptr);
+              const View& view, GBuffer& gbuffer, GpuProfiler* profiler = nullptr,
+              BackFaces backFaces = BackFaces::AsFront);
 
  private:
   ComputeProgram program_;

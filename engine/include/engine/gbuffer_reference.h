@@ -48,7 +48,8 @@ struct GBufferData {
 // The resolve of `visibility` (view.width * view.height texels as the rasterizer writes them)
 // computed in double.
 GBufferData resolveGBufferReference(const Scene& scene, const View& view,
-                                    std::span<const uint64_t> visibility);
+                                    std::span<const uint64_t> visibility,
+                                    BackFaces backFaces = BackFaces::AsFront);
 
 // Decodes the raw bytes of the four G-buffer images (Image::readback, formats of
 // shaders/shared/gbuffer.h). Normals are decoded from RG16_SNORM and the octahedral map in
@@ -71,9 +72,10 @@ CameraRay cameraRayReference(const View& view, glm::dvec2 pixel);
 // The surface of triangle `triangle` at barycentrics (u, v) (weights of its vertices 1 and 2)
 // seen along `rayDir`, as the resolve decodes it: interpolated normal flipped to face the ray's
 // origin by the geometric normal, material factors times bilinear textures. depth is 0 (not a
-// background sample). The CPU references (path tracer, VPL gather) shade their hits with it.
+// background sample). The CPU references (path tracer, VPL gather) shade their hits with it:
+// camera hits with AsFront, the surfaces that bounce the light with PerMaterial (BackFaces).
 GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 barycentrics,
-                        glm::dvec3 rayDir);
+                        glm::dvec3 rayDir, BackFaces backFaces = BackFaces::AsFront);
 
 // sRGB transfer function inverse (IEC 61966-2-1), encoded [0, 1] -> linear, in double.
 double srgbToLinear(double encoded);

@@ -184,7 +184,8 @@ void ReflectiveShadowMap::record(VkCommandBuffer cmd, const engine::SceneGpu& sc
   {
     engine::ProfileScope scope(profiler, cmd, "rsm raster");
     rasterizer.record(cmd, scene, view.raster, {&visibility_, 0, size_, size_});
-    resolve.record(cmd, scene, visibility_, view.view, surface_);
+    resolve.record(cmd, scene, visibility_, view.view, surface_, nullptr,
+                   engine::BackFaces::PerMaterial);
   }
   flux_.record(cmd, surface_, view, lightFluxSource(light), vpls_, profiler);
 }
