@@ -36,6 +36,7 @@ class ModelReader {
   ModelReader(const std::string& path, const tinygltf::Model& model) : model_(model), path_(path) {}
 
   [[noreturn]] void fail(const std::string& problem) const { throw Error(path_ + ": " + problem); }
+  std::string located(const std::string& problem) const { return path_ + ": " + problem; }
 
   template <typename T>
   const T& at(const std::vector<T>& items, int index, const std::string& kind,

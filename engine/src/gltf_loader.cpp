@@ -20,16 +20,13 @@
 #include "engine/error.h"
 #include "engine/gltf.h"
 #include "engine/image_io.h"
+#include "gltf_preflight.h"
 #include "gltf_scene_builder.h"
 
 namespace engine {
 namespace {
 
 constexpr const char* kLightsExtension = "KHR_lights_punctual";
-// Extensions a file may list as required. Emissive strength only scales emission, which this
-// module ignores anyway (see scene.h); of KHR_materials_specular the factors are read.
-constexpr std::string_view kUnderstoodExtensions[] = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular"};
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -45,7 +42,8 @@ struct ImageDecoder {
   std::string gltfPath;
   const tinygltf::Model* model = nullptr;  // filled by tinygltf before images are parsed
   std::vector<std::optional<Texture>> textures;
-  std::string error;  // first failure, reported instead of tinygltf's wording
+  std::vector<bool> colourImages;  // gltf_detail::preflight's base-colour images
+  std::string error;               // first failure, reported instead of tinygltf's wording
 };
 
 bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string*, int,
@@ -79,7 +77,11 @@ bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err,
       if (bytes == nullptr || size <= 0) throw Error(name + ": empty image data");
       encoded = std::span<const uint8_t>(bytes, static_cast<size_t>(size));
     }
-    Texture texture = decodeTexture(name, encoded);
+    // Decoded reduced towards the size the GPU keeps (kMaxTextureSize), read in strips: an 8192^2
+    // texture never holds its full-size pixels in memory.
+    const bool colour = size_t(imageIndex) < decoder.colourImages.size() &&
+                        decoder.colourImages[size_t(imageIndex)];
+    Texture texture = decodeTexture(name, encoded, {kMaxTextureSize, colour});
     texture.name = name;
     const auto slot = static_cast<size_t>(imageIndex);
     if (decoder.textures.size() <= slot) decoder.textures.resize(slot + 1);
@@ -97,17 +99,20 @@ bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err,
 namespace gltf_detail {
 
 void SceneBuilder::build() {
-  for (const std::string& extension : model_.extensionsRequired) {
-    if (std::find(std::begin(kUnderstoodExtensions), std::end(kUnderstoodExtensions), extension) ==
-        std::end(kUnderstoodExtensions)) {
-      fail("requires unsupported extension '" + extension + "'");
-    }
-  }
+  for (const std::string& extension : model_.extensionsRequired)
+    if (!understoodExtension(extension)) fail("requires unsupported extension '" + extension + "'");
+  // An optional extension's data has a fallback the file must also carry; the loader reads that.
+  for (const std::string& extension : model_.extensionsUsed)
+    if (!understoodExtension(extension))
+      scene_.warnings.push_back(
+          located("uses extension '" + extension + "', not implemented: ignored"));
   convertMaterials();
   convertLights();
   convertCameras();
   traverseNodes();
-  if (scene_.indices.empty()) fail("scene has no triangles");
+  if (scene_.indices.empty())
+    fail("scene has no triangles" +
+         std::string(scene_.warnings.empty() ? "" : " (" + scene_.warnings.front() + ")"));
   if (defaultMaterial_) scene_.materials.push_back(*defaultMaterial_);
 }
 
@@ -243,14 +248,17 @@ Scene loadGltf(const std::string& path) {
     throw Error(path + ": unsupported file extension '" + ext + "' (expected .gltf or .glb)");
   }
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": file not found");
+  if (!std::filesystem::exists(path, ec)) throw Error(path + ": file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": not a regular file");
 
   tinygltf::Model model;
   ImageDecoder decoder;
+  decoder.colourImages = gltf_detail::preflight(path, gltf_detail::jsonText(path, ext == ".glb"));
   decoder.gltfPath = path;
   decoder.model = &model;
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&decodeImage, &decoder);
+  parser.SetFsCallbacks(gltf_detail::regularFilesOnly());
   std::string err;
   std::string warn;
   bool ok = false;

@@ -64,9 +64,17 @@ void SceneBuilder::addMesh(int meshIndex, const glm::dmat4& world, const std::st
 void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm::dmat4& world,
                                 const std::string& where) {
   const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+  if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
+      mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+    // Points and lines have no area to light or to be lit: the rest of the file still renders.
+    scene_.warnings.push_back(located(where + ": skipped (" +
+                                      (mode == TINYGLTF_MODE_POINTS ? "points" : "lines") +
+                                      "; only triangles are rendered)"));
+    return;
+  }
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
       mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-    fail(where + ": unsupported primitive mode " + std::to_string(mode) + " (only triangles)");
+    fail(where + ": unknown primitive mode " + std::to_string(mode));
   }
   const auto attribute = [&](const char* name) {
     const auto it = primitive.attributes.find(name);
@@ -170,6 +178,7 @@ void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm:
     for (size_t v = 0; v < vertexCount; ++v) {
       const glm::dvec3 n(readFloat(*normals, v, 0), readFloat(*normals, v, 1),
                          readFloat(*normals, v, 2));
+      if (!isFinite(n)) fail(where + " NORMAL: non-finite normal at vertex " + std::to_string(v));
       vertexNormals[v] = normalMatrix * n;
     }
   } else {
@@ -200,8 +209,11 @@ void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm:
   scene_.positions.insert(scene_.positions.end(), worldPositions.begin(), worldPositions.end());
   for (size_t v = 0; v < vertexCount; ++v) {
     scene_.normals.emplace_back(tryNormalize(vertexNormals[v]).value_or(fallback[v]));
-    scene_.uvs.emplace_back(uvs ? glm::vec2(readFloat(*uvs, v, 0), readFloat(*uvs, v, 1))
-                                : glm::vec2(0.0f));
+    const glm::dvec2 uv =
+        uvs ? glm::dvec2(readFloat(*uvs, v, 0), readFloat(*uvs, v, 1)) : glm::dvec2(0.0);
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+      fail(where + " TEXCOORD_0: non-finite texture coordinate at vertex " + std::to_string(v));
+    scene_.uvs.emplace_back(uv);
   }
   for (uint32_t corner : triangles) scene_.indices.push_back(static_cast<uint32_t>(base) + corner);
   scene_.triangleMaterial.insert(scene_.triangleMaterial.end(), triangles.size() / 3, material);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include <system_error>
 
 #include "engine/error.h"
+#include "engine/tonemap.h"
 
 namespace engine {
 namespace {
@@ -126,7 +128,74 @@ std::vector<T> readRgba(OIIO::ImageInput& in, const std::string& name, T opaque,
   return rgba;
 }
 
-Texture toTexture(OIIO::ImageInput& in, const std::string& name) {
+// Expands `channels` (1 to 4) of n pixels to RGBA in place order: grey to G = B = R, alpha 255.
+void expandToRgba(const uint8_t* src, int channels, size_t n, uint8_t* dst) {
+  for (size_t i = 0; i < n; ++i, src += channels, dst += 4) {
+    if (channels <= 2) {
+      dst[0] = dst[1] = dst[2] = src[0];
+      dst[3] = channels == 2 ? src[1] : 255;
+    } else {
+      std::copy_n(src, 3, dst);
+      dst[3] = channels == 4 ? src[3] : 255;
+    }
+  }
+}
+
+// The block-averaged read of TextureSize, for an image larger than maxSize.
+Texture reducedTexture(OIIO::ImageInput& in, const std::string& name, int factor, bool srgb) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (uint64_t(spec.width) * uint64_t(spec.height) > kMaxPixels)
+    throw Error(name + ": image too large (" + std::to_string(spec.width) + "x" +
+                std::to_string(spec.height) + ")");
+  const int channels = std::min(spec.nchannels, 4);
+  const int outW = (spec.width + factor - 1) / factor, outH = (spec.height + factor - 1) / factor;
+  std::array<float, 256> toLinear;  // the colour channels' decode, by byte value
+  for (int v = 0; v < 256; ++v)
+    toLinear[size_t(v)] = srgb ? srgbToLinear(float(v) / 255.0f) : float(v) / 255.0f;
+  std::vector<uint8_t> strip(size_t(spec.width) * size_t(factor) * size_t(channels));
+  std::vector<uint8_t> rgba(size_t(spec.width) * 4);
+  std::vector<double> sums(size_t(outW) * 4);
+  Texture texture;
+  texture.name = name;
+  texture.width = outW;
+  texture.height = outH;
+  texture.rgba8.resize(size_t(outW) * size_t(outH) * 4);
+  for (int oy = 0; oy < outH; ++oy) {
+    const int y0 = oy * factor, y1 = std::min(spec.height, y0 + factor);
+    if (!in.read_scanlines(0, 0, y0, y1, 0, 0, channels, OIIO::TypeDesc::UINT8, strip.data()))
+      throw Error(name + ": " + oiioMessage(in.geterror()));
+    std::fill(sums.begin(), sums.end(), 0.0);
+    for (int y = 0; y < y1 - y0; ++y) {
+      expandToRgba(strip.data() + size_t(y) * size_t(spec.width) * size_t(channels), channels,
+                   size_t(spec.width), rgba.data());
+      for (int x = 0; x < spec.width; ++x)
+        for (int c = 0; c < 4; ++c) {
+          const uint8_t v = rgba[size_t(x) * 4 + size_t(c)];
+          sums[size_t(x / factor) * 4 + size_t(c)] +=
+              c == 3 ? double(v) / 255.0 : double(toLinear[v]);
+        }
+    }
+    for (int ox = 0; ox < outW; ++ox) {
+      const int blockW = std::min(spec.width, (ox + 1) * factor) - ox * factor;
+      const double count = double(blockW) * double(y1 - y0);
+      for (int c = 0; c < 4; ++c) {
+        float mean = float(sums[size_t(ox) * 4 + size_t(c)] / count);
+        if (srgb && c != 3) mean = linearToSrgb(mean);
+        texture.rgba8[(size_t(oy) * size_t(outW) + size_t(ox)) * 4 + size_t(c)] =
+            static_cast<uint8_t>(std::lround(std::clamp(mean, 0.0f, 1.0f) * 255.0f));
+      }
+    }
+  }
+  return texture;
+}
+
+Texture toTexture(OIIO::ImageInput& in, const std::string& name, TextureSize size = {}) {
+  const OIIO::ImageSpec& spec = in.spec();
+  int factor = 1;
+  while (size.maxSize > 0 && spec.depth == 1 && spec.nchannels > 0 &&
+         std::max(spec.width, spec.height) / (2 * factor) >= size.maxSize)
+    factor *= 2;
+  if (factor > 1) return reducedTexture(in, name, factor, size.srgb);
   Texture texture;
   texture.name = name;
   texture.rgba8 = readRgba<uint8_t>(in, name, 255, texture.width, texture.height);
@@ -225,7 +294,7 @@ ImageRgba32f readImage(const std::string& path) {
   return image;
 }
 
-Texture decodeTexture(const std::string& name, std::span<const uint8_t> encoded) {
+Texture decodeTexture(const std::string& name, std::span<const uint8_t> encoded, TextureSize size) {
   const char* format = detectFormat(encoded);
   if (format == nullptr) {
     throw Error(name + ": unrecognised image data (expected PNG, JPEG, OpenEXR, TIFF or BMP)");
@@ -242,7 +311,7 @@ Texture decodeTexture(const std::string& name, std::span<const uint8_t> encoded)
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   OIIO::ImageSpec spec;
   if (!in->open(name, spec, config)) throw Error(name + ": " + oiioMessage(in->geterror()));
-  return toTexture(*in, name);
+  return toTexture(*in, name, size);
 }
 
 Texture readTexture(const std::string& path) {

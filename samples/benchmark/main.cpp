@@ -44,6 +44,7 @@ struct Options {
   uint32_t width = 0, height = 0;
   samples::LightChoice light = samples::LightChoice::Auto;
   std::string lightName = "auto";  // as typed: part of every row's identity
+  std::string camera;              // --camera; "" = each scene's first (then not in the identity)
 };
 
 const char* usage() {
@@ -61,6 +62,7 @@ const char* usage() {
          "  --counts LIST   comma-separated VSGL counts, 1..65535, instead of the preset's\n"
          "  --width N --height N  image size, 1..8192, instead of the preset's (the path-traced\n"
          "                  reference's cost grows with the pixel count)\n" SAMPLES_LIGHT_USAGE
+             SAMPLES_CAMERA_USAGE
          "  --device SEL    Vulkan device index or name substring\n"
          "  --validation    enable the Khronos validation layer\n";
 }
@@ -75,6 +77,8 @@ Options parseOptions(int argc, char** argv) {
       o.outDir = args.value();
     else if (arg == "--scenes")
       o.scenes = samples::parseList(arg, args.value());
+    else if (arg == "--camera")
+      o.camera = args.value();
     else if (arg == "--light") {
       o.lightName = args.value();
       o.light = samples::parseLightChoice(arg, o.lightName);
@@ -331,6 +335,7 @@ int run(const Options& o) {
   std::vector<engine::Scene> scenes;  // loaded once, checked before anything is measured
   for (const std::string& name : p.scenes) {
     scenes.push_back(samples::loadScene(name));
+    samples::selectCamera(scenes.back(), o.camera);
     const std::string note =
         samples::applyLightChoice(scenes.back(), o.light, false, float(p.width) / float(p.height));
     if (!note.empty()) std::printf("%s\n", note.c_str());
@@ -377,6 +382,7 @@ int run(const Options& o) {
                               {"reference_noise", p.referenceNoise},
                               {"device", ctx.info().name},
                               {"revision", VSGL_REVISION}});
+        if (!o.camera.empty()) identities.back()["camera"] = o.camera;
         if (std::ifstream in(rowFile(identities[i])); in)
           records[i] = json::parse(in, nullptr, false);
         if (records[i].is_discarded() || !records[i].is_object() ||

@@ -1,6 +1,8 @@
 #include "scene_files.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdio>
 #include <filesystem>
 
 #include "engine/builtin_scenes.h"
@@ -17,12 +19,17 @@ bool isBuiltinScene(const std::string& name) {
 
 engine::Scene loadScene(const std::string& name) {
   if (isBuiltinScene(name)) return engine::makeBuiltinScene(name);
-  std::filesystem::path path(name);
-  if (path.extension() != ".gltf" && path.extension() != ".glb")
+  std::string extension = std::filesystem::path(name).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension != ".gltf" && extension != ".glb")
     throw engine::Error("--scene: '" + name +
                         "' is neither a built-in scene (cornell, atrium, checker, lounge) nor a "
                         ".gltf/.glb file");
-  return engine::loadGltf(name);
+  engine::Scene scene = engine::loadGltf(name);
+  for (const std::string& warning : scene.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  return scene;
 }
 
 engine::ImageRgba32f loadEnvironment(const std::string& name, uint32_t builtinWidth) {
@@ -37,6 +44,25 @@ engine::ImageRgba32f loadEnvironment(const std::string& name, uint32_t builtinWi
                         ") nor an image file");
   }
   return engine::readImage(name);
+}
+
+void selectCamera(engine::Scene& scene, const std::string& choice) {
+  if (choice.empty()) return;
+  std::vector<engine::Camera>& cameras = scene.cameras;
+  auto chosen = std::find_if(cameras.begin(), cameras.end(),
+                             [&](const engine::Camera& c) { return c.name == choice; });
+  if (chosen == cameras.end() &&
+      std::all_of(choice.begin(), choice.end(), [](unsigned char c) { return std::isdigit(c); }) &&
+      choice.size() < 10 && std::stoul(choice) < cameras.size())
+    chosen = cameras.begin() + static_cast<std::ptrdiff_t>(std::stoul(choice));
+  if (chosen == cameras.end()) {
+    std::string list;
+    for (size_t i = 0; i < cameras.size(); ++i)
+      list += (i ? ", " : "") + std::to_string(i) + " '" + cameras[i].name + "'";
+    throw engine::Error("--camera: '" + choice + "' is not a camera of " + scene.source +
+                        (cameras.empty() ? " (it has none)" : " (cameras: " + list + ")"));
+  }
+  std::rotate(cameras.begin(), chosen, chosen + 1);
 }
 
 engine::View sceneView(const engine::Scene& scene, uint32_t width, uint32_t height) {

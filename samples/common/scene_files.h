@@ -14,12 +14,20 @@
 namespace samples {
 
 bool isBuiltinScene(const std::string& name);
-// Throws engine::Error("--scene: ...") for anything that is neither.
+// Throws engine::Error("--scene: ...") for anything that is neither. A file's load warnings
+// (Scene::warnings) go to stderr, one "warning: " line each.
 engine::Scene loadScene(const std::string& name);
 // The --environment argument: a built-in environment's name (engine/environments.h, made
 // builtinWidth x builtinWidth / 2) or an equirectangular image file OpenImageIO reads (HDR, EXR,
 // ...), y up. Throws engine::Error naming the argument or the file.
 engine::ImageRgba32f loadEnvironment(const std::string& name, uint32_t builtinWidth = 1024);
+// --camera NAME|INDEX: moves that camera of `scene` to the front, where sceneView, the default
+// lights and every program look ("" keeps the first). A name is matched first, then an index.
+// Throws engine::Error naming the choice and listing the scene's cameras when none matches.
+void selectCamera(engine::Scene& scene, const std::string& choice);
+#define SAMPLES_CAMERA_USAGE                                                          \
+  "  --camera NAME|INDEX  the file's camera to look through (default: its first; a\n" \
+  "                       file without cameras gets a framing of the whole scene)\n"
 // The scene's first camera (or the default framing) for a width x height image.
 engine::View sceneView(const engine::Scene& scene, uint32_t width, uint32_t height);
 // Creates `dir` (and parents); throws engine::Error naming it on failure.

@@ -53,6 +53,7 @@ struct Options {
   float noise = 0.05f;
   std::string outDir = "flicker";
   samples::LightChoice light = samples::LightChoice::Auto;
+  std::string camera;             // "" = the first
   samples::CommonOptions common;  // --device, --validation, --help
 };
 
@@ -62,7 +63,7 @@ const char* usage() {
          "(default "
          "checker)\n"
          "  --motion M         static, orbit (camera), sweep (light) or move (a box) (default "
-         "orbit)\n" SAMPLES_LIGHT_USAGE
+         "orbit)\n" SAMPLES_LIGHT_USAGE SAMPLES_CAMERA_USAGE
          "  --frames N         frames in the sequence, 2..1000 (default 16)\n"
          "  --width N --height N  image size, 1..4096 (default 160x90)\n"
          "  --count N          VSGLs, 1..65535 (default 128)\n"
@@ -94,6 +95,8 @@ Options parseOptions(int argc, char** argv) {
       o.scene = args.value();
     else if (arg == "--light")
       o.light = samples::parseLightChoice(arg, args.value());
+    else if (arg == "--camera")
+      o.camera = args.value();
     else if (arg == "--motion")
       o.motion = args.value();
     else if (arg == "--frames")
@@ -209,6 +212,7 @@ int run(const Options& o) {
   }
   const flicker::Motion motion = flicker::parseMotion(o.motion);
   engine::Scene base = samples::loadScene(o.scene);
+  samples::selectCamera(base, o.camera);
   const std::string lightNote =
       samples::applyLightChoice(base, o.light, false, float(o.width) / float(o.height));
   if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());

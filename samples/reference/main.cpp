@@ -31,6 +31,7 @@ struct Options {
   uint32_t vplRsm = 0;  // 0 = no VPL gather
   std::string compare;  // an image to score against the reference's indirect light
   samples::LightChoice light = samples::LightChoice::Auto;
+  std::string camera;  // "" = the first
   bool help = false;
 };
 
@@ -41,7 +42,7 @@ const char* usage() {
          "cornell)\n"
          "  --out DIR            output directory (default out)\n"
          "  --width N --height N image size in pixels, 1..8192 (default "
-         "640x360)\n" SAMPLES_LIGHT_USAGE
+         "640x360)\n" SAMPLES_LIGHT_USAGE SAMPLES_CAMERA_USAGE
          "  --noise R            stop a pixel when its standard error is R of its value,\n"
          "                       0.001..0.5 (default 0.01), or R/10 of the image's mean\n"
          "  --max-samples N      per pixel, 16..1048576 (default 65536)\n"
@@ -63,6 +64,8 @@ Options parseOptions(int argc, char** argv) {
       o.scene = args.value();
     else if (arg == "--light")
       o.light = samples::parseLightChoice(arg, args.value());
+    else if (arg == "--camera")
+      o.camera = args.value();
     else if (arg == "--out")
       o.outDir = args.value();
     else if (arg == "--width")
@@ -115,6 +118,7 @@ int run(const Options& o) {
     return 0;
   }
   engine::Scene scene = samples::loadScene(o.scene);
+  samples::selectCamera(scene, o.camera);
   const std::string lightNote =
       samples::applyLightChoice(scene, o.light, false, float(o.width) / float(o.height));
   if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());

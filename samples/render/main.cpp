@@ -52,6 +52,7 @@ int run(const render::Options& o) {
 
   auto wallStart = std::chrono::steady_clock::now();
   engine::Scene scene = samples::loadScene(o.scene);
+  samples::selectCamera(scene, o.camera);
   const std::string lightNote = samples::applyLightChoice(scene, o.light, !o.environment.empty(),
                                                           float(o.width) / float(o.height));
   std::string stem = std::filesystem::path(o.scene).stem().string();

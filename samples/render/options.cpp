@@ -7,6 +7,7 @@
 
 #include "cli_values.h"
 #include "engine/error.h"
+#include "scene_files.h"
 
 namespace render {
 
@@ -32,6 +33,7 @@ const char* usage() {
          "  --list-devices       print the Vulkan devices and exit\n"
          "  --validation         enable the Khronos validation layer\n"
          "  --export-gltf PATH   also write the scene as a .gltf file\n" SAMPLES_LIGHT_USAGE
+             SAMPLES_CAMERA_USAGE
          "indirect light (VSGLs through the public API, gi/include/gi/settings.h):\n"
          "  --no-indirect        direct light only\n"
          "  --method NAME        modified (modified FIS, default), tok15 (Tokuyoshi 2015's kernel\n"
@@ -100,6 +102,8 @@ Options parseOptions(int argc, char** argv) {
       o.scene = args.value();
     else if (arg == "--light")
       o.light = samples::parseLightChoice(arg, args.value());
+    else if (arg == "--camera")
+      o.camera = args.value();
     else if (arg == "--out")
       o.outDir = args.value();
     else if (arg == "--width")

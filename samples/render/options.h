@@ -33,6 +33,7 @@ struct Options {
   // file; empty = none.
   std::string environment;
   samples::LightChoice light = samples::LightChoice::Auto;  // --light
+  std::string camera;                                       // --camera; "" = the first
   // VSGL whose ISM visibility becomes the debug picture; -1 = the most powerful one.
   int32_t debugVsgl = -1;
 };

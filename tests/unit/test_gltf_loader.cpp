@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -10,7 +11,9 @@
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -431,7 +434,7 @@ TEST(GltfLoaderErrors, TruncatedAndMalformedJson) {
   writeText(dir / "malformed.gltf", R"({"asset": {"version": "2.0"}, "nodes": [ }, ])");
   expectLoadError(dir / "malformed.gltf", "parse error");
   writeText(dir / "empty.gltf", "");
-  expectLoadError(dir / "empty.gltf", "File is empty");
+  expectLoadError(dir / "empty.gltf", "file is empty");
 }
 
 TEST(GltfLoaderErrors, TruncatedGlb) {
@@ -478,10 +481,122 @@ TEST(GltfLoader, SceneWithoutLightsLoadsWithNone) {
 }
 
 TEST(GltfLoaderErrors, UnsupportedContent) {
+  // Its one primitive is points, skipped: nothing is left to render.
   expectLoadError(kGltfData / "bad_points.gltf",
-                  "mesh 'triangle' primitive 0: unsupported primitive mode 0 (only triangles)");
+                  "scene has no triangles (" + (kGltfData / "bad_points.gltf").string() +
+                      ": mesh 'triangle' primitive 0: skipped (points; only triangles are "
+                      "rendered))");
   expectLoadError(kGltfData / "bad_spot_cone.gltf", "light 'badspot'");
   expectLoadError(kGltfData / "bad_spot_cone.gltf", "innerConeAngle");
+}
+
+// triangle_spot.gltf with its buffer in buf.bin beside it, `edit` applied to the JSON and
+// `bytes` to the buffer, written to dir/name.
+fs::path editedTriangle(const TempDir& dir, const std::string& name,
+                        const std::function<void(json&)>& edit,
+                        const std::function<void(std::vector<uint8_t>&)>& bytes = {}) {
+  json g = json::parse(readText(kGltfData / "triangle_spot.gltf"));
+  std::string uri = g["buffers"][0]["uri"];
+  std::vector<uint8_t> buffer = base64Decode(uri.substr(uri.find(',') + 1));
+  if (bytes) bytes(buffer);
+  writeBytes(dir / "buf.bin", buffer);
+  g["buffers"][0]["uri"] = "buf.bin";
+  edit(g);
+  writeText(dir / name, g.dump());
+  return dir / name;
+}
+
+void putFloat(std::vector<uint8_t>& bytes, size_t offset, float value) {
+  std::memcpy(bytes.data() + offset, &value, sizeof(value));
+}
+
+// A lines primitive beside the triangles: the triangles load, the lines are named on one
+// warning line, nothing else changes.
+TEST(GltfLoader, LinesBesideTrianglesAreSkippedWithOneWarning) {
+  TempDir dir;
+  const fs::path path = editedTriangle(dir, "lines.gltf", [](json& g) {
+    g["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}, {"mode", 1}});
+  });
+  const engine::Scene scene = engine::loadGltf(path.string());
+  EXPECT_EQ(scene.triangleCount(), 1u);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_EQ(scene.warnings[0],
+            path.string() +
+                ": mesh 'triangle' primitive 1: skipped (lines; only triangles are "
+                "rendered)");
+}
+
+// An optional extension the loader does not implement is named once; a required one refuses
+// the file with its name, before tinygltf (which calls a Draco file's accessor invalid).
+TEST(GltfLoader, UnimplementedExtensionsAreNamed) {
+  TempDir dir;
+  const fs::path optional = editedTriangle(dir, "optional.gltf", [](json& g) {
+    g["extensionsUsed"] = {"KHR_lights_punctual", "KHR_texture_transform"};
+  });
+  const engine::Scene scene = engine::loadGltf(optional.string());
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_EQ(scene.warnings[0], optional.string() +
+                                   ": uses extension 'KHR_texture_transform', not implemented: "
+                                   "ignored");
+  const fs::path draco = editedTriangle(dir, "draco.gltf", [](json& g) {
+    g["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+    g["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    g["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"] = {
+        {"bufferView", 9}, {"attributes", {{"POSITION", 0}}}};
+    for (json& a : g["accessors"]) a.erase("bufferView");
+  });
+  expectLoadError(draco, "requires unsupported extension 'KHR_draco_mesh_compression'");
+}
+
+TEST(GltfLoaderErrors, NonFiniteAttributesNameTheAccessor) {
+  TempDir dir;
+  auto none = [](json&) {};
+  // Buffer layout: POSITION at 0, NORMAL at 36, TEXCOORD_0 at 72 (three vertices each).
+  expectLoadError(editedTriangle(dir, "uv.gltf", none,
+                                 [](std::vector<uint8_t>& b) { putFloat(b, 72, std::nanf("")); }),
+                  "mesh 'triangle' primitive 0 TEXCOORD_0: non-finite texture coordinate at "
+                  "vertex 0");
+  expectLoadError(editedTriangle(dir, "normal.gltf", none,
+                                 [](std::vector<uint8_t>& b) {
+                                   putFloat(b, 36 + 12 + 4, std::numeric_limits<float>::infinity());
+                                 }),
+                  "mesh 'triangle' primitive 0 NORMAL: non-finite normal at vertex 1");
+}
+
+// What tinygltf would crash or hang on, or word as something else: each a one-line error.
+TEST(GltfLoaderErrors, HostileFiles) {
+  TempDir dir;
+  // ~16 000 levels overflowed the stack inside tinygltf's parser (a 32 KB file).
+  writeText(dir / "deep.gltf", R"({"asset": {"version": "2.0"}, "extras": )" +
+                                   std::string(16000, '[') + std::string(16000, ']') + "}");
+  expectLoadError(dir / "deep.gltf", "JSON nests deeper than 256 levels");
+  // A buffer URI naming a FIFO blocked forever; one naming a directory read as bad_alloc.
+  ASSERT_EQ(::mkfifo((dir / "fifo.bin").c_str(), 0600), 0);
+  writeText(dir / "fifo.gltf",
+            std::regex_replace(readText(editedTriangle(dir, "t.gltf", [](json&) {})),
+                               std::regex("buf\\.bin"), "fifo.bin"));
+  expectLoadError(dir / "fifo.gltf", "fifo.bin' is not a regular file");
+  fs::create_directory(dir / "folder.bin");
+  writeText(dir / "folder.gltf",
+            std::regex_replace(readText(dir / "t.gltf"), std::regex("buf\\.bin"), "folder.bin"));
+  expectLoadError(dir / "folder.gltf", "folder.bin' is a directory");
+  // A URI is a path, never a shell word: tinygltf's default expanded it through wordexp.
+  writeText(dir / "shell.gltf", std::regex_replace(readText(dir / "t.gltf"),
+                                                   std::regex("buf\\.bin"), "$(touch pwned).bin"));
+  expectLoadError(dir / "shell.gltf", "pwned");
+  EXPECT_FALSE(fs::exists(dir / "pwned"));
+  EXPECT_FALSE(fs::exists("pwned"));
+  // The file itself a directory.
+  fs::create_directory(dir / "scene.gltf");
+  expectLoadError(dir / "scene.gltf", "not a regular file");
+}
+
+TEST(GltfLoader, UpperCaseFileExtensions) {
+  TempDir dir;
+  fs::copy_file(kGltfData / "triangle_spot.gltf", dir / "TRIANGLE.GLTF");
+  EXPECT_EQ(engine::loadGltf((dir / "TRIANGLE.GLTF").string()).triangleCount(), 1u);
+  convertToGlb(kGltfData / "triangle_spot.gltf", dir / "TRIANGLE.GLB");
+  EXPECT_EQ(engine::loadGltf((dir / "TRIANGLE.GLB").string()).triangleCount(), 1u);
 }
 
 // Edits of a valid file, each of which must be rejected with the given phrase.
@@ -514,8 +629,16 @@ TEST(GltfLoaderErrors, BadReferencesAndValues) {
                                         {"values", {{"bufferView", 0}}}};
        },
        "sparse accessors are not supported"},
-      {"mode", [](json& g) { g["meshes"][0]["primitives"][0]["mode"] = 1; },
-       "unsupported primitive mode 1"},
+      {"mode", [](json& g) { g["meshes"][0]["primitives"][0]["mode"] = 7; },
+       "unknown primitive mode 7"},
+      // Values tinygltf used to replace by their defaults without a word.
+      {"base colour",
+       [](json& g) {
+         g["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 0.5, 0.5};
+       },
+       "materials[0].pbrMetallicRoughness.baseColorFactor must be 4 numbers, got [0.5,0.5,0.5]"},
+      {"negative offset", [](json& g) { g["accessors"][0]["byteOffset"] = -4; },
+       "accessors[0].byteOffset must be a non-negative integer, got -4"},
       {"roughness",
        [](json& g) { g["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 1.5; },
        "roughnessFactor must lie in [0, 1]"},

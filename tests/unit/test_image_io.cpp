@@ -12,6 +12,7 @@
 
 #include "engine/error.h"
 #include "engine/image_io.h"
+#include "engine/tonemap.h"
 #include "test_files.h"
 
 namespace {
@@ -165,6 +166,44 @@ TEST_F(ImageIoTest, DecodeTextureFromPngBytesInMemory) {
   EXPECT_EQ(texture.width, width);
   EXPECT_EQ(texture.height, height);
   EXPECT_EQ(texture.rgba8, rgba);
+}
+
+// A texture larger than TextureSize::maxSize is read in strips and block-averaged: 2050 x 1030
+// to maxSize 1000 is f = 2 (f = 4 would leave 512 < 1000), 1025 x 515 texels, the last column
+// and row averaging the 2 x 1 and 1 x 2 blocks they hold. Each texel against the mean of its
+// block computed here from the full-size decode, in linear space for colour: within one 8-bit
+// step (the two round the same mean once each). A smaller image is left as it is.
+TEST_F(ImageIoTest, LargeTexturesAreBlockAveragedWhileRead) {
+  const int width = 2050, height = 1030;
+  const std::vector<uint8_t> rgba = noiseRgba(width, height);
+  const std::string file = path("large.png");
+  engine::writePng(file, width, height, rgba);
+  const std::vector<uint8_t> encoded = readBytes(file);
+  EXPECT_EQ(engine::decodeTexture("large.png", encoded, {4096, true}).rgba8, rgba);
+  for (const bool srgb : {false, true}) {
+    SCOPED_TRACE(srgb ? "sRGB" : "linear");
+    const engine::Texture t = engine::decodeTexture("large.png", encoded, {1000, srgb});
+    ASSERT_EQ(t.width, 1025);
+    ASSERT_EQ(t.height, 515);
+    int worst = 0;
+    for (int y = 0; y < t.height; ++y)
+      for (int x = 0; x < t.width; ++x)
+        for (int c = 0; c < 4; ++c) {
+          const bool colour = srgb && c != 3;
+          double sum = 0.0;
+          int n = 0;
+          for (int yy = 2 * y; yy < std::min(height, 2 * y + 2); ++yy)
+            for (int xx = 2 * x; xx < std::min(width, 2 * x + 2); ++xx, ++n) {
+              const double v = rgba[(size_t(yy) * width + size_t(xx)) * 4 + size_t(c)] / 255.0;
+              sum += colour ? engine::srgbToLinear(float(v)) : v;
+            }
+          const double mean = sum / n;
+          const double expected = 255.0 * (colour ? engine::linearToSrgb(float(mean)) : mean);
+          const int got = t.rgba8[(size_t(y) * t.width + size_t(x)) * 4 + size_t(c)];
+          worst = std::max(worst, int(std::ceil(std::abs(got - expected) - 0.5)));
+        }
+    EXPECT_LE(worst, 1);
+  }
 }
 
 TEST_F(ImageIoTest, DecodeTextureFromJpegBytesInMemory) {

@@ -6,10 +6,12 @@
 // counter-clockwise stays front-facing. Supported: triangle lists, strips and fans (indexed or
 // not, u8/u16/u32 indices); POSITION, NORMAL, TEXCOORD_0 (float, or normalized u8/u16 UVs);
 // pbrMetallicRoughness factors and textures; KHR_materials_specular's factors (not its
-// textures); KHR_lights_punctual; perspective and orthographic cameras. Ignored on purpose:
-// samplers (repeat wrap and trilinear filtering are assumed), emission, normal/occlusion maps,
-// alpha modes, skins, morph targets and animations. Primitives without a material get an appended
-// default material: opaque white, metallic 0, roughness 0.5, single-sided.
+// textures); KHR_lights_punctual; perspective and orthographic cameras. Points and lines
+// primitives and optional extensions it does not implement are skipped with one line each in
+// Scene::warnings. Ignored on purpose: samplers (repeat wrap and trilinear filtering are
+// assumed), emission, normal/occlusion maps, alpha modes, skins, morph targets and animations.
+// Primitives without a material get an appended default material: opaque white, metallic 0,
+// roughness 0.5, single-sided. What is read, skipped and refused: docs/gltf.md.
 #pragma once
 
 #include <string>

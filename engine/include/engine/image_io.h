@@ -33,9 +33,20 @@ void writeAnimatedGif(const std::string& path, int width, int height,
 // grey, A=1). Pixel values are the file's own (no colour-space conversion).
 ImageRgba32f readImage(const std::string& path);
 
+// How large a decoded texture needs to be. An image whose longer side exceeds maxSize is reduced
+// while it is read: each block of f x f texels is averaged, f the largest power of two that
+// keeps the longer side >= maxSize (blocks at the right and bottom edges average what they
+// hold). It is read a strip of f rows at a time, so memory holds the result and one strip, never
+// the whole image. `srgb` averages colour in linear space (a base-colour texture). 0 = full size.
+struct TextureSize {
+  int maxSize = 0;
+  bool srgb = false;
+};
+
 // Decodes an encoded image (PNG, JPEG, ...) held in memory into 8-bit RGBA. `name` appears in
 // error messages. Throws engine::Error("<name>: <problem>").
-Texture decodeTexture(const std::string& name, std::span<const uint8_t> encoded);
+Texture decodeTexture(const std::string& name, std::span<const uint8_t> encoded,
+                      TextureSize size = {});
 
 // Reads an image file as an 8-bit RGBA texture. Throws engine::Error("<path>: <problem>").
 Texture readTexture(const std::string& path);

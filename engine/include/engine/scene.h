@@ -20,6 +20,11 @@ struct Texture {
   std::vector<uint8_t> rgba8;  // width * height * 4 bytes, rows top to bottom
 };
 
+// Largest side of the GPU's packed texture layers (engine::uploadScene downsamples bigger
+// textures to it). The glTF loader reduces larger textures towards it as it decodes them
+// (engine::TextureSize).
+constexpr int kMaxTextureSize = 1024;
+
 // glTF 2.0 metallic-roughness material. Emission is ignored (documented in architecture.md):
 // one-bounce transport from emissive surfaces is outside this module's scope.
 struct Material {
@@ -87,6 +92,10 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<Light> lights;
   std::vector<Camera> cameras;  // may be empty: see defaultCamera()
+  // What the loader read past without using, one line each ("<file>: <what was skipped>"): a
+  // points or lines primitive, an optional extension it does not implement. The programs print
+  // them; nothing else reads them.
+  std::vector<std::string> warnings;
 
   uint32_t triangleCount() const { return static_cast<uint32_t>(indices.size() / 3); }
   Bounds bounds() const;

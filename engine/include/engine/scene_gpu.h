@@ -21,8 +21,6 @@ struct SceneGpu {
   uint32_t textureSize = 1;  // every layer is resampled to this square power-of-two size
 };
 
-// Largest side of the packed texture layers; bigger textures are downsampled to it.
-constexpr int kMaxTextureSize = 1024;
 
 SceneGpu uploadScene(Context& ctx, const Scene& scene);
 
