@@ -129,12 +129,19 @@ GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 baryce
     s.roughness = 1.0;  // black: diffuse, F0 and F90 stay 0
     return s;
   }
+  // KHR_texture_transform, as gbuffer_resolve.comp applies it.
+  const auto transformed = [&](const TextureTransform& t) {
+    const glm::dvec3 uv1(texcoord, 1.0);
+    return glm::dvec2(glm::dot(t.rowU(), uv1), glm::dot(t.rowV(), uv1));
+  };
   glm::dvec4 base(m.baseColorFactor);
   if (m.baseColorTexture >= 0)
-    base *= sampleBilinear(scene.textures[m.baseColorTexture], texcoord, true);
+    base *=
+        sampleBilinear(scene.textures[m.baseColorTexture], transformed(m.baseColorTransform), true);
   double metallic = m.metallicFactor, roughness = m.roughnessFactor;
   if (m.metallicRoughnessTexture >= 0) {
-    glm::dvec4 mr = sampleBilinear(scene.textures[m.metallicRoughnessTexture], texcoord, false);
+    glm::dvec4 mr = sampleBilinear(scene.textures[m.metallicRoughnessTexture],
+                                   transformed(m.metallicRoughnessTransform), false);
     roughness *= mr.g;  // glTF packing: G = roughness, B = metallic
     metallic *= mr.b;
   }

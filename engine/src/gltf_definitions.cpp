@@ -32,6 +32,36 @@ int SceneBuilder::textureImage(const tinygltf::TextureInfo& info, const std::str
   return texture.source;
 }
 
+// KHR_texture_transform on a textureInfo: offset, rotation and scale, finite; its texCoord, which
+// overrides the textureInfo's, must name TEXCOORD_0 like every texture here.
+TextureTransform SceneBuilder::textureTransform(const tinygltf::TextureInfo& info,
+                                                const std::string& where) const {
+  TextureTransform t;
+  const auto ext = info.extensions.find("KHR_texture_transform");
+  if (info.index < 0 || ext == info.extensions.end()) return t;
+  const tinygltf::Value& v = ext->second;
+  const std::string what = where + " KHR_texture_transform";
+  if (!v.IsObject()) fail(what + " must be an object");
+  const auto number = [&](const tinygltf::Value& x, const std::string& field) {
+    if (!x.IsNumber() || !std::isfinite(x.GetNumberAsDouble()))
+      fail(what + " " + field + " must be a finite number");
+    return static_cast<float>(x.GetNumberAsDouble());
+  };
+  const auto pair = [&](const char* field, glm::vec2& out) {
+    if (!v.Has(field)) return;
+    const tinygltf::Value& a = v.Get(field);
+    if (!a.IsArray() || a.ArrayLen() != 2) fail(what + " " + field + " must have 2 values");
+    for (int k = 0; k < 2; ++k) out[k] = number(a.Get(k), field);
+  };
+  pair("offset", t.offset);
+  pair("scale", t.scale);
+  if (v.Has("rotation")) t.rotation = number(v.Get("rotation"), "rotation");
+  if (v.Has("texCoord") &&
+      (!v.Get("texCoord").IsNumber() || v.Get("texCoord").GetNumberAsDouble() != 0.0))
+    fail(what + " texCoord: only TEXCOORD_0 is supported");
+  return t;
+}
+
 // KHR_materials_specular: its two factors. Its textures (specularTexture, specularColorTexture)
 // are not supported; the factors stand for the whole surface.
 void SceneBuilder::convertSpecular(const tinygltf::Material& in, const std::string& where,
@@ -79,6 +109,9 @@ void SceneBuilder::convertMaterials() {
     out.baseColorTexture = textureImage(pbr.baseColorTexture, where + " baseColorTexture");
     out.metallicRoughnessTexture =
         textureImage(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
+    out.baseColorTransform = textureTransform(pbr.baseColorTexture, where + " baseColorTexture");
+    out.metallicRoughnessTransform =
+        textureTransform(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
     out.doubleSided = in.doubleSided;
     convertSpecular(in, where, out);
     scene_.materials.push_back(std::move(out));

@@ -17,7 +17,8 @@ namespace engine::gltf_detail {
 constexpr size_t kMaxJsonDepth = 256;
 
 // Extensions a file may list as required. Emissive strength only scales emission, which this
-// module ignores anyway (see scene.h); of KHR_materials_specular the factors are read.
+// module ignores anyway (see scene.h); of KHR_materials_specular the factors are read;
+// KHR_texture_transform is applied to both textures.
 bool understoodExtension(std::string_view name);
 
 // The JSON text of `path`: the whole file for .gltf, the JSON chunk of a .glb (its header and

@@ -38,6 +38,8 @@ class SceneBuilder : private ModelReader {
 
   // gltf_definitions.cpp
   int textureImage(const tinygltf::TextureInfo& info, const std::string& where) const;
+  TextureTransform textureTransform(const tinygltf::TextureInfo& info,
+                                    const std::string& where) const;
   void convertMaterials();
   void convertSpecular(const tinygltf::Material& in, const std::string& where, Material& out);
   void convertLights();

@@ -58,6 +58,23 @@ bool hasSpecular(const Material& m) {
   return m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f);
 }
 
+// Whether a material's textures carry a KHR_texture_transform (written only then).
+bool hasTextureTransform(const Material& m) {
+  return (m.baseColorTexture >= 0 && !m.baseColorTransform.identity()) ||
+         (m.metallicRoughnessTexture >= 0 && !m.metallicRoughnessTransform.identity());
+}
+
+// A textureInfo: the texture's index, and its transform when it has one.
+json textureInfo(int index, const TextureTransform& t) {
+  json info = {{"index", index}};
+  if (!t.identity())
+    info["extensions"] = {{"KHR_texture_transform",
+                           {{"offset", tidyArray({&t.offset.x, 2})},
+                            {"rotation", tidy(t.rotation)},
+                            {"scale", tidyArray({&t.scale.x, 2})}}}};
+  return info;
+}
+
 std::string base64(std::span<const uint8_t> bytes) {
   static constexpr char kAlphabet[] =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -229,6 +246,8 @@ class GltfBuilder {
     }
     if (std::any_of(scene_.materials.begin(), scene_.materials.end(), hasSpecular))
       gltf["extensionsUsed"].push_back("KHR_materials_specular");
+    if (std::any_of(scene_.materials.begin(), scene_.materials.end(), hasTextureTransform))
+      gltf["extensionsUsed"].push_back("KHR_texture_transform");
     if (!nodes.empty()) {  // glTF arrays, when present, must not be empty
       json rootNodes = json::array();
       for (size_t i = 0; i < nodes.size(); ++i) rootNodes.push_back(i);
@@ -301,12 +320,12 @@ class GltfBuilder {
       json pbr = {{"baseColorFactor", tidyArray({&material.baseColorFactor.x, 4})},
                   {"metallicFactor", tidy(material.metallicFactor)},
                   {"roughnessFactor", tidy(material.roughnessFactor)}};
-      if (material.baseColorTexture >= 0) {
-        pbr["baseColorTexture"] = {{"index", material.baseColorTexture}};
-      }
-      if (material.metallicRoughnessTexture >= 0) {
-        pbr["metallicRoughnessTexture"] = {{"index", material.metallicRoughnessTexture}};
-      }
+      if (material.baseColorTexture >= 0)
+        pbr["baseColorTexture"] =
+            textureInfo(material.baseColorTexture, material.baseColorTransform);
+      if (material.metallicRoughnessTexture >= 0)
+        pbr["metallicRoughnessTexture"] =
+            textureInfo(material.metallicRoughnessTexture, material.metallicRoughnessTransform);
       json out = {{"pbrMetallicRoughness", std::move(pbr)}, {"doubleSided", material.doubleSided}};
       if (hasSpecular(material))
         out["extensions"] = {

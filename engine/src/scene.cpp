@@ -5,6 +5,19 @@
 
 namespace engine {
 
+// translation * rotation * scale of KHR_texture_transform; the rotation's sense is the one its
+// own example fixes (offset (0, 1), rotation pi/2 and scale 0.5 map the unit square onto the
+// lower-left quadrant, v pointing down).
+glm::dvec3 TextureTransform::rowU() const {
+  const double c = std::cos(double(rotation)), s = std::sin(double(rotation));
+  return {c * scale.x, s * scale.y, offset.x};
+}
+
+glm::dvec3 TextureTransform::rowV() const {
+  const double c = std::cos(double(rotation)), s = std::sin(double(rotation));
+  return {-s * scale.x, c * scale.y, offset.y};
+}
+
 Bounds Scene::bounds() const {
   if (positions.empty()) return Bounds{};
   Bounds b{positions.front(), positions.front()};

@@ -124,6 +124,10 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
     g.baseColorLayer = layerOf(baseLayers, m.baseColorTexture);
     g.metallicRoughnessLayer = layerOf(dataLayers, m.metallicRoughnessTexture);
     g.doubleSided = m.doubleSided ? 1u : 0u;
+    g.baseColorUvU = glm::vec4(glm::vec3(m.baseColorTransform.rowU()), 0.0f);
+    g.baseColorUvV = glm::vec4(glm::vec3(m.baseColorTransform.rowV()), 0.0f);
+    g.metallicRoughnessUvU = glm::vec4(glm::vec3(m.metallicRoughnessTransform.rowU()), 0.0f);
+    g.metallicRoughnessUvV = glm::vec4(glm::vec3(m.metallicRoughnessTransform.rowV()), 0.0f);
     for (int t : {m.baseColorTexture, m.metallicRoughnessTexture})
       if (t >= 0) largest = std::max({largest, scene.textures[t].width, scene.textures[t].height});
     materials.push_back(g);

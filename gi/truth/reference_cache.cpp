@@ -54,6 +54,15 @@ CacheKey& CacheKey::add(const engine::Scene& scene) {
     // (the cached references) stay what they were.
     if (m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f))
       add(std::string("KHR_materials_specular")).add(m.specularFactor).add(m.specularColorFactor);
+    const engine::TextureTransform* transforms[] = {&m.baseColorTransform,
+                                                    &m.metallicRoughnessTransform};
+    for (uint32_t i = 0; i < 2; ++i)
+      if (!transforms[i]->identity())
+        add(std::string("KHR_texture_transform"))
+            .add(i)
+            .add(transforms[i]->offset)
+            .add(transforms[i]->rotation)
+            .add(transforms[i]->scale);
   }
   add(scene.textures.size());
   for (const engine::Texture& t : scene.textures) add(t.width).add(t.height).addVector(t.rgba8);

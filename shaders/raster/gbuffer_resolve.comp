@@ -40,6 +40,11 @@ vec2 planeBarycentrics(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c) {
   return vec2(dot(s, p), dot(dir, q)) / det;
 }
 
+// KHR_texture_transform: the rows u, v of a 2 x 3 affine map (SceneMaterial); gradients take its
+// linear part only.
+vec2 transformUv(vec3 u, vec3 v, vec2 uv) { return vec2(dot(u, vec3(uv, 1.0)), dot(v, vec3(uv, 1.0))); }
+vec2 transformGradient(vec3 u, vec3 v, vec2 d) { return vec2(dot(u.xy, d), dot(v.xy, d)); }
+
 vec2 rayBarycentrics(vec2 pixel, vec3 a, vec3 b, vec3 c) {
   vec3 origin, dir;
   cameraRay(pc.invViewProj, pixelToNdc(pixel, pc.viewport), origin, dir);
@@ -99,11 +104,18 @@ void main() {
   vec4 base = materials[material].baseColorFactor;
   int baseLayer = materials[material].baseColorLayer;
   int mrLayer = materials[material].metallicRoughnessLayer;
-  if (baseLayer >= 0)
-    base *= textureGrad(baseColorTextures, vec3(uv, float(baseLayer)), uvDx, uvDy);
+  if (baseLayer >= 0) {
+    vec3 u = materials[material].baseColorUvU.xyz, v = materials[material].baseColorUvV.xyz;
+    base *= textureGrad(baseColorTextures, vec3(transformUv(u, v, uv), float(baseLayer)),
+                        transformGradient(u, v, uvDx), transformGradient(u, v, uvDy));
+  }
   float metallic = materials[material].metallic, roughness = materials[material].roughness;
   if (mrLayer >= 0) {
-    vec4 mr = textureGrad(metallicRoughnessTextures, vec3(uv, float(mrLayer)), uvDx, uvDy);
+    vec3 u = materials[material].metallicRoughnessUvU.xyz;
+    vec3 v = materials[material].metallicRoughnessUvV.xyz;
+    vec4 mr = textureGrad(metallicRoughnessTextures,
+                          vec3(transformUv(u, v, uv), float(mrLayer)),
+                          transformGradient(u, v, uvDx), transformGradient(u, v, uvDy));
     roughness *= mr.g;  // glTF packing: G = roughness, B = metallic
     metallic *= mr.b;
   }

@@ -21,6 +21,13 @@ struct SceneMaterial {
   float roughness;  // perceptual roughness [0, 1]
   int baseColorLayer;
   int metallicRoughnessLayer;
+  // KHR_texture_transform of each texture, the rows of a 2 x 3 affine map of (u, v, 1):
+  // u' = dot(xyz, (u, v, 1)) with the U row, v' with the V row (engine::TextureTransform); w
+  // unused.
+  vec4 baseColorUvU;
+  vec4 baseColorUvV;
+  vec4 metallicRoughnessUvU;
+  vec4 metallicRoughnessUvV;
   // glTF doubleSided: 1 = both faces reflect light; 0 = the back face reflects none in a light's
   // view (GBufferResolvePush::lightView), though it still blocks the light.
   uint doubleSided;
@@ -32,6 +39,6 @@ struct SceneMaterial {
 SHARED_END
 
 SHARED_ASSERT_SIZE(SceneVertex, 32);
-SHARED_ASSERT_SIZE(SceneMaterial, 64);
+SHARED_ASSERT_SIZE(SceneMaterial, 128);
 SHARED_ASSERT_OFFSET(SceneMaterial, metallic, 32);
 #endif

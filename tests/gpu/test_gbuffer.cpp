@@ -324,7 +324,13 @@ TEST_F(GBufferTest, ConstantTexturesMultiplyFactors) {
   RecordProperty("max_abs_error", std::to_string(maxError));
 }
 
-TEST_F(GBufferTest, MagnifiedTexturesMatchBilinearReference) {
+// Identity, and a KHR_texture_transform (scale 0.5, rotation 0.3 rad, offset (0.1, 0.3)) that
+// keeps the transformed coordinates inside the outer texel centres too (u' in [0.14, 0.69],
+// v' in [0.19, 0.74]): the GPU's transform of coordinates and gradients against the twin's.
+class MagnifiedTextures : public GBufferTest,
+                          public ::testing::WithParamInterface<engine::TextureTransform> {};
+
+TEST_P(MagnifiedTextures, MatchBilinearReference) {
   // 8 x 8 ramps stretched over the view: ~0.05 texels per pixel, so the GPU's LOD is < 0 and
   // its trilinear filter reduces to bilinear on mip 0, the reference's filter. UVs stay
   // between the outer texel centres (1/16 .. 15/16) so no tap wraps around.
@@ -337,6 +343,7 @@ TEST_F(GBufferTest, MagnifiedTexturesMatchBilinearReference) {
   m.baseColorFactor = {1.0f, 0.8f, 0.6f, 1.0f};
   m.roughnessFactor = 0.75f;
   m.metallicFactor = 0.0f;  // diffuse = base colour, F0 = 0.04
+  m.baseColorTransform = m.metallicRoughnessTransform = GetParam();
   Scene scene = texturedQuad(makeTexture("base", kSize, baseAt), makeTexture("mr", kSize, mrAt), m,
                              0.5f / kSize, 1.0f - 0.5f / kSize);
   engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
@@ -387,5 +394,9 @@ TEST_F(GBufferTest, MagnifiedTexturesMatchBilinearReference) {
   }
   RecordProperty("max_abs_error", std::to_string(maxError));
 }
+
+INSTANTIATE_TEST_SUITE_P(GBuffer, MagnifiedTextures,
+                         ::testing::Values(engine::TextureTransform{},
+                                           engine::TextureTransform{{0.1f, 0.3f}, 0.3f, {0.5f, 0.5f}}));
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
+#include <utility>
 #include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -383,6 +384,69 @@ TEST(GltfWriter, WritesTexturesAsPngBesideTheGltf) {
   EXPECT_EQ(back.uvs, scene.uvs);
 }
 
+// KHR_texture_transform's example: offset (0, 1), rotation pi/2 and scale 0.5 take the unit
+// square onto the image's lower-left quadrant, turned clockwise (the result's top-left corner
+// shows the quadrant's bottom-left one). Exact in double up to cos(pi/2)'s rounding.
+TEST(TextureTransform, MapsAsTheExtensionsExample) {
+  const engine::TextureTransform t{{0.0f, 1.0f}, 1.57079632679f, {0.5f, 0.5f}};
+  auto map = [&](double u, double v) {
+    return glm::dvec2(glm::dot(t.rowU(), glm::dvec3(u, v, 1.0)),
+                      glm::dot(t.rowV(), glm::dvec3(u, v, 1.0)));
+  };
+  const std::pair<glm::dvec2, glm::dvec2> corners[] = {{{0, 0}, {0, 1}},
+                                                       {{1, 0}, {0, 0.5}},
+                                                       {{0, 1}, {0.5, 1}},
+                                                       {{1, 1}, {0.5, 0.5}}};
+  for (const auto& [from, to] : corners) {
+    const glm::dvec2 got = map(from.x, from.y);
+    EXPECT_NEAR(got.x, to.x, 1e-7) << from.x << "," << from.y;
+    EXPECT_NEAR(got.y, to.y, 1e-7) << from.x << "," << from.y;
+  }
+  EXPECT_TRUE(engine::TextureTransform{}.identity());
+  EXPECT_EQ(engine::TextureTransform{}.rowU(), glm::dvec3(1, 0, 0));
+  EXPECT_EQ(engine::TextureTransform{}.rowV(), glm::dvec3(0, 1, 0));
+}
+
+// The extension on each texture is read, written back where it is not the identity (and
+// listed in extensionsUsed), and refused with its field when malformed.
+TEST(GltfLoader, ReadsAndWritesKhrTextureTransform) {
+  TempDir dir;
+  fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png");
+  json gltf = json::parse(readText(kGltfData / "textured.gltf"));
+  json& pbr = gltf["materials"][0]["pbrMetallicRoughness"];
+  pbr["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
+      {"offset", {0.25, -0.5}}, {"rotation", 0.5}, {"scale", {2.0, 3.0}}};
+  gltf["extensionsUsed"].push_back("KHR_texture_transform");
+  writeText(dir / "transform.gltf", gltf.dump());
+  const engine::Scene scene = engine::loadGltf((dir / "transform.gltf").string());
+  EXPECT_TRUE(scene.warnings.empty());
+  const engine::TextureTransform& t = scene.materials[0].baseColorTransform;
+  EXPECT_EQ(t.offset, glm::vec2(0.25f, -0.5f));
+  EXPECT_EQ(t.rotation, 0.5f);
+  EXPECT_EQ(t.scale, glm::vec2(2.0f, 3.0f));
+  EXPECT_TRUE(scene.materials[0].metallicRoughnessTransform.identity());
+
+  engine::writeGltf(scene, (dir / "back.gltf").string());
+  const json written = json::parse(readText(dir / "back.gltf"));
+  EXPECT_NE(std::find(written["extensionsUsed"].begin(), written["extensionsUsed"].end(),
+                      "KHR_texture_transform"),
+            written["extensionsUsed"].end());
+  const engine::Scene back = engine::loadGltf((dir / "back.gltf").string());
+  EXPECT_EQ(back.materials[0].baseColorTransform.offset, t.offset);
+  EXPECT_EQ(back.materials[0].baseColorTransform.rotation, t.rotation);
+  EXPECT_EQ(back.materials[0].baseColorTransform.scale, t.scale);
+  EXPECT_TRUE(back.materials[0].metallicRoughnessTransform.identity());
+
+  pbr["baseColorTexture"]["extensions"]["KHR_texture_transform"]["rotation"] = "half";
+  writeText(dir / "bad_rotation.gltf", gltf.dump());
+  expectLoadError(dir / "bad_rotation.gltf",
+                  "material 0 baseColorTexture KHR_texture_transform rotation must be a finite "
+                  "number");
+  pbr["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {{"texCoord", 1}};
+  writeText(dir / "bad_texcoord.gltf", gltf.dump());
+  expectLoadError(dir / "bad_texcoord.gltf", "texCoord: only TEXCOORD_0 is supported");
+}
+
 // KHR_materials_specular's factors are read (textures are not supported), written back only
 // where they differ from the defaults, and listed in extensionsUsed.
 TEST(GltfLoader, ReadsAndWritesKhrMaterialsSpecular) {
@@ -531,12 +595,12 @@ TEST(GltfLoader, LinesBesideTrianglesAreSkippedWithOneWarning) {
 TEST(GltfLoader, UnimplementedExtensionsAreNamed) {
   TempDir dir;
   const fs::path optional = editedTriangle(dir, "optional.gltf", [](json& g) {
-    g["extensionsUsed"] = {"KHR_lights_punctual", "KHR_texture_transform"};
+    g["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_clearcoat"};
   });
   const engine::Scene scene = engine::loadGltf(optional.string());
   ASSERT_EQ(scene.warnings.size(), 1u);
   EXPECT_EQ(scene.warnings[0], optional.string() +
-                                   ": uses extension 'KHR_texture_transform', not implemented: "
+                                   ": uses extension 'KHR_materials_clearcoat', not implemented: "
                                    "ignored");
   const fs::path draco = editedTriangle(dir, "draco.gltf", [](json& g) {
     g["extensionsUsed"] = {"KHR_draco_mesh_compression"};

@@ -25,15 +25,35 @@ struct Texture {
 // (engine::TextureSize).
 constexpr int kMaxTextureSize = 1024;
 
+// KHR_texture_transform of one texture: texture coordinates (u, v) become
+// offset + R(rotation) (scale * (u, v)), R turning the coordinates counter-clockwise by
+// `rotation` radians as the extension defines it (u' = cos u + sin v, v' = -sin u + cos v for a
+// unit scale), which turns the image clockwise. Identity by default.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
+
+  bool identity() const {
+    return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f);
+  }
+  // Rows of the 2 x 3 affine map of (u, v, 1), in double (the CPU references) and as the GPU
+  // stores them (gpu::SceneMaterial).
+  glm::dvec3 rowU() const;
+  glm::dvec3 rowV() const;
+};
+
 // glTF 2.0 metallic-roughness material. Emission is ignored (documented in architecture.md):
 // one-bounce transport from emissive surfaces is outside this module's scope.
 struct Material {
   std::string name;
-  glm::vec4 baseColorFactor{1.0f};    // linear RGBA
-  float metallicFactor = 1.0f;        // [0, 1]
-  float roughnessFactor = 1.0f;       // perceptual roughness r in [0, 1]; GGX alpha = r^2
-  int baseColorTexture = -1;          // index into Scene::textures, -1 = none
-  int metallicRoughnessTexture = -1;  // glTF packing: roughness in G, metallic in B
+  glm::vec4 baseColorFactor{1.0f};      // linear RGBA
+  float metallicFactor = 1.0f;          // [0, 1]
+  float roughnessFactor = 1.0f;         // perceptual roughness r in [0, 1]; GGX alpha = r^2
+  int baseColorTexture = -1;            // index into Scene::textures, -1 = none
+  int metallicRoughnessTexture = -1;    // glTF packing: roughness in G, metallic in B
+  TextureTransform baseColorTransform;  // KHR_texture_transform of each texture
+  TextureTransform metallicRoughnessTransform;
   // KHR_materials_specular: a dielectric's specular reflection, F0 = min(0.04 x colour, 1) x
   // strength and F90 = strength (Schlick); metals keep F0 = base colour and F90 = 1. Strength 0
   // makes the dielectric purely diffuse. Its textures are not supported (the factors are used).

@@ -68,7 +68,8 @@ struct GBufferImages {
 //   indices            uint32 x 3 per triangle, counter-clockwise seen from the front
 //   triangleMaterials  uint32 material index per triangle
 //   materials          gpu::SceneMaterial per material (glTF metallic-roughness factors,
-//                      KHR_materials_specular factors and texture layers, -1 = none)
+//                      KHR_materials_specular factors, texture layers, -1 = none, with their
+//                      KHR_texture_transform, and doubleSided)
 //   baseColorTextures  2-D array view, R8G8B8A8_SRGB, layers indexed by the materials
 //   dataTextures       2-D array view, R8G8B8A8_UNORM (glTF metallic-roughness: g = roughness,
 //                      b = metallic); both in SHADER_READ_ONLY_OPTIMAL, sampled with `sampler`
