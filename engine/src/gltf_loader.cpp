@@ -42,8 +42,9 @@ struct ImageDecoder {
   std::string gltfPath;
   const tinygltf::Model* model = nullptr;  // filled by tinygltf before images are parsed
   std::vector<std::optional<Texture>> textures;
-  std::vector<bool> colourImages;  // gltf_detail::preflight's base-colour images
-  std::string error;               // first failure, reported instead of tinygltf's wording
+  gltf_detail::Preflight preflight;
+  uint64_t textureBytes = 0;  // decoded so far
+  std::string error;          // first failure, reported instead of tinygltf's wording
 };
 
 bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string*, int,
@@ -79,9 +80,16 @@ bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err,
     }
     // Decoded reduced towards the size the GPU keeps (kMaxTextureSize), read in strips: an 8192^2
     // texture never holds its full-size pixels in memory.
-    const bool colour = size_t(imageIndex) < decoder.colourImages.size() &&
-                        decoder.colourImages[size_t(imageIndex)];
+    const std::vector<bool>& colourImages = decoder.preflight.colourImages;
+    const bool colour =
+        size_t(imageIndex) < colourImages.size() && colourImages[size_t(imageIndex)];
     Texture texture = decodeTexture(name, encoded, {kMaxTextureSize, colour});
+    decoder.textureBytes += texture.rgba8.size();
+    if (decoder.preflight.bufferBytes + decoder.textureBytes > kMaxSceneBytes)
+      throw Error("buffers and textures decoded so far hold " +
+                  std::to_string((decoder.preflight.bufferBytes + decoder.textureBytes) >> 20) +
+                  " MB, more than the " + std::to_string(kMaxSceneBytes >> 20) +
+                  " MB a scene may use (engine::kMaxSceneBytes)");
     texture.name = name;
     const auto slot = static_cast<size_t>(imageIndex);
     if (decoder.textures.size() <= slot) decoder.textures.resize(slot + 1);
@@ -253,7 +261,7 @@ Scene loadGltf(const std::string& path) {
 
   tinygltf::Model model;
   ImageDecoder decoder;
-  decoder.colourImages = gltf_detail::preflight(path, gltf_detail::jsonText(path, ext == ".glb"));
+  decoder.preflight = gltf_detail::preflight(path, gltf_detail::jsonText(path, ext == ".glb"));
   decoder.gltfPath = path;
   decoder.model = &model;
   tinygltf::TinyGLTF parser;

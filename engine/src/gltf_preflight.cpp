@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "engine/error.h"
+#include "engine/gltf.h"
 
 namespace engine::gltf_detail {
 namespace {
@@ -117,20 +118,31 @@ bool understoodExtension(std::string_view name) {
 std::string jsonText(const std::string& path, bool binary) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot be read");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.empty()) throw Error(path + ": file is empty");
-  if (!binary) return bytes;
-  // Header: magic "glTF", version 2, total length; then chunk 0: length, type "JSON", data.
-  if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0)
+  if (!binary) {
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.empty()) throw Error(path + ": file is empty");
+    return text;
+  }
+  // Header: magic "glTF", version 2, total length; then chunk 0: length, type "JSON", data. Only
+  // these are read here, not the binary chunk tinygltf reads next.
+  std::string header(20, '\0');
+  in.read(header.data(), 20);
+  if (in.gcount() == 0) throw Error(path + ": file is empty");
+  if (in.gcount() < 20 || header.compare(0, 4, "glTF") != 0)
     throw Error(path + ": not a binary glTF (no 'glTF' header)");
-  if (readU32(bytes, 4) != 2) throw Error(path + ": binary glTF version is not 2");
-  const uint32_t length = readU32(bytes, 12);  // chunk 0's length
-  if (bytes.compare(16, 4, "JSON") != 0) throw Error(path + ": first chunk is not JSON");
-  if (length > bytes.size() - 20) throw Error(path + ": JSON chunk runs past the end of the file");
-  return bytes.substr(20, length);
+  if (readU32(header, 4) != 2) throw Error(path + ": binary glTF version is not 2");
+  if (header.compare(16, 4, "JSON") != 0) throw Error(path + ": first chunk is not JSON");
+  std::error_code ec;
+  const uint64_t size = std::filesystem::file_size(path, ec);
+  const uint32_t length = readU32(header, 12);  // chunk 0's length
+  if (ec || length > size - 20) throw Error(path + ": JSON chunk runs past the end of the file");
+  std::string json(length, '\0');
+  in.read(json.data(), length);
+  if (uint64_t(in.gcount()) != length) throw Error(path + ": JSON chunk cannot be read");
+  return json;
 }
 
-std::vector<bool> preflight(const std::string& path, const std::string& json) {
+Preflight preflight(const std::string& path, const std::string& json) {
   // Depth outside strings, escapes skipped: a scan, not a parse, so it cannot overflow itself.
   size_t depth = 0;
   bool inString = false;
@@ -154,6 +166,14 @@ std::vector<bool> preflight(const std::string& path, const std::string& json) {
   const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
   if (doc.is_discarded() || !doc.is_object()) return {};  // tinygltf words the syntax error
   checkShapes(path, doc);
+  Preflight out;
+  for (const nlohmann::json& b : doc.value("buffers", nlohmann::json::array()))
+    if (b.is_object() && b.contains("byteLength") && b["byteLength"].is_number_unsigned())
+      out.bufferBytes += b["byteLength"].get<uint64_t>();
+  if (out.bufferBytes > kMaxSceneBytes)
+    throw Error(path + ": its buffers hold " + std::to_string(out.bufferBytes >> 20) +
+                " MB, more than the " + std::to_string(kMaxSceneBytes >> 20) +
+                " MB a scene may use (engine::kMaxSceneBytes)");
   const auto required = doc.find("extensionsRequired");
   if (required != doc.end() && required->is_array())
     for (const nlohmann::json& name : *required)
@@ -163,7 +183,8 @@ std::vector<bool> preflight(const std::string& path, const std::string& json) {
   // textures[].source; references out of range are left to the scene builder to report.
   const nlohmann::json images = doc.value("images", nlohmann::json::array());
   const nlohmann::json textures = doc.value("textures", nlohmann::json::array());
-  std::vector<bool> colour(images.is_array() ? images.size() : 0, false);
+  std::vector<bool>& colour = out.colourImages;
+  colour.assign(images.is_array() ? images.size() : 0, false);
   for (const nlohmann::json& m : doc.value("materials", nlohmann::json::array())) {
     const nlohmann::json* t = &m;
     for (const char* key : {"pbrMetallicRoughness", "baseColorTexture", "index"}) {
@@ -180,7 +201,7 @@ std::vector<bool> preflight(const std::string& path, const std::string& json) {
     if (source.is_number_unsigned() && source.get<size_t>() < colour.size())
       colour[source.get<size_t>()] = true;
   }
-  return colour;
+  return out;
 }
 
 tinygltf::FsCallbacks regularFilesOnly() {

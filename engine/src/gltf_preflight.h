@@ -7,6 +7,7 @@
 #include <tiny_gltf.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,10 +31,16 @@ std::string jsonText(const std::string& path, bool binary);
 // does not understand (before tinygltf, which fails on some of them with unrelated words), or
 // one of the values tinygltf would silently replace by its default has the wrong shape (a
 // negative byteOffset, a 3-value baseColorFactor: the field is named, with its value).
-// Returns, per glTF image, whether a material uses it as base colour (sRGB-encoded colour: its
-// reduction at decode averages in linear space); empty when `json` does not parse, which
-// tinygltf then reports.
-std::vector<bool> preflight(const std::string& path, const std::string& json);
+// What the loader needs to know before tinygltf reads the buffers and images.
+struct Preflight {
+  // Per glTF image, whether a material uses it as base colour (sRGB-encoded colour: its
+  // reduction at decode averages in linear space); empty when `json` does not parse, which
+  // tinygltf then reports.
+  std::vector<bool> colourImages;
+  uint64_t bufferBytes = 0;  // the buffers' declared byteLength, summed
+};
+// Also throws when the buffers alone exceed kMaxSceneBytes, before any is read.
+Preflight preflight(const std::string& path, const std::string& json);
 
 // tinygltf's file access, restricted: a buffer or image URI must name a regular file (a FIFO
 // would block forever, a directory reads as bad_alloc), and paths are used as written (the

@@ -10,12 +10,12 @@
 #include <fstream>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
-#include <utility>
 #include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/error.h"
@@ -393,10 +393,8 @@ TEST(TextureTransform, MapsAsTheExtensionsExample) {
     return glm::dvec2(glm::dot(t.rowU(), glm::dvec3(u, v, 1.0)),
                       glm::dot(t.rowV(), glm::dvec3(u, v, 1.0)));
   };
-  const std::pair<glm::dvec2, glm::dvec2> corners[] = {{{0, 0}, {0, 1}},
-                                                       {{1, 0}, {0, 0.5}},
-                                                       {{0, 1}, {0.5, 1}},
-                                                       {{1, 1}, {0.5, 0.5}}};
+  const std::pair<glm::dvec2, glm::dvec2> corners[] = {
+      {{0, 0}, {0, 1}}, {{1, 0}, {0, 0.5}}, {{0, 1}, {0.5, 1}}, {{1, 1}, {0.5, 0.5}}};
   for (const auto& [from, to] : corners) {
     const glm::dvec2 got = map(from.x, from.y);
     EXPECT_NEAR(got.x, to.x, 1e-7) << from.x << "," << from.y;
@@ -650,6 +648,12 @@ TEST(GltfLoaderErrors, HostileFiles) {
   expectLoadError(dir / "shell.gltf", "pwned");
   EXPECT_FALSE(fs::exists(dir / "pwned"));
   EXPECT_FALSE(fs::exists("pwned"));
+  // Buffers declaring more than a scene may hold are refused before a byte of them is read.
+  writeText(dir / "huge.gltf",
+            std::regex_replace(readText(dir / "t.gltf"), std::regex("\"byteLength\":96"),
+                               "\"byteLength\":3221225472"));
+  expectLoadError(dir / "huge.gltf",
+                  "its buffers hold 3072 MB, more than the 2048 MB a scene may use");
   // The file itself a directory.
   fs::create_directory(dir / "scene.gltf");
   expectLoadError(dir / "scene.gltf", "not a regular file");
