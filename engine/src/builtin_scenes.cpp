@@ -390,12 +390,18 @@ std::vector<std::string> builtinSceneNames() {
   return {"cornell", "atrium", "checker", "lounge"};
 }
 
+std::string builtinSceneList() {
+  std::string list;
+  for (const std::string& name : builtinSceneNames()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
 Scene makeBuiltinScene(const std::string& name) {
   if (name == "cornell") return makeCornell();
   if (name == "atrium") return makeAtrium();
   if (name == "checker") return makeChecker();
   if (name == "lounge") return makeLounge();
-  throw Error("unknown built-in scene '" + name + "' (choices: cornell, atrium, checker, lounge)");
+  throw Error("unknown built-in scene '" + name + "' (choices: " + builtinSceneList() + ")");
 }
 
 }  // namespace engine

@@ -107,13 +107,12 @@ bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err,
 namespace gltf_detail {
 
 void SceneBuilder::build() {
-  for (const std::string& extension : model_.extensionsRequired)
-    if (!understoodExtension(extension)) fail("requires unsupported extension '" + extension + "'");
-  // An optional extension's data has a fallback the file must also carry; the loader reads that.
+  // A required extension the loader cannot read was refused by gltf_detail::preflight. An
+  // optional one's data has a fallback the file must also carry; the loader reads that.
   for (const std::string& extension : model_.extensionsUsed)
     if (!understoodExtension(extension))
       scene_.warnings.push_back(
-          located("uses extension '" + extension + "', not implemented: ignored"));
+          located("ignores extension '" + extension + "' (the loader does not read it)"));
   convertMaterials();
   convertLights();
   convertCameras();

@@ -26,11 +26,6 @@ bool understoodExtension(std::string_view name);
 // chunk lengths checked). Throws engine::Error("<path>: <problem>").
 std::string jsonText(const std::string& path, bool binary);
 
-// Throws engine::Error("<path>: ...") when `json` nests arrays and objects deeper than
-// kMaxJsonDepth, or when it is valid JSON whose extensionsRequired names an extension the loader
-// does not understand (before tinygltf, which fails on some of them with unrelated words), or
-// one of the values tinygltf would silently replace by its default has the wrong shape (a
-// negative byteOffset, a 3-value baseColorFactor: the field is named, with its value).
 // What the loader needs to know before tinygltf reads the buffers and images.
 struct Preflight {
   // Per glTF image, whether a material uses it as base colour (sRGB-encoded colour: its
@@ -39,7 +34,12 @@ struct Preflight {
   std::vector<bool> colourImages;
   uint64_t bufferBytes = 0;  // the buffers' declared byteLength, summed
 };
-// Also throws when the buffers alone exceed kMaxSceneBytes, before any is read.
+// Throws engine::Error("<path>: ...") when `json` nests arrays and objects deeper than
+// kMaxJsonDepth; or when it is valid JSON and its extensionsRequired names an extension the
+// loader does not understand (before tinygltf, which fails on some of them with unrelated
+// words), one of the values tinygltf would silently replace by its default has the wrong shape
+// (a negative byteOffset, a 3-value baseColorFactor: the field is named, with its value), or its
+// buffers alone exceed kMaxSceneBytes.
 Preflight preflight(const std::string& path, const std::string& json);
 
 // tinygltf's file access, restricted: a buffer or image URI must name a regular file (a FIFO

@@ -91,6 +91,20 @@ void writeAtomically(const std::string& path, const char* format, const OIIO::Im
 
 // Reads subimage 0 of an opened image as RGBA of element type T. One channel is grey (replicated
 // into RGB); two are grey + alpha, as PNG and TIFF store them; a missing alpha becomes `opaque`.
+// Expands n pixels of `channels` (1 to 4) to RGBA: grey to R = G = B, a missing alpha `opaque`.
+template <typename T>
+void expandToRgba(const T* src, int channels, size_t n, T opaque, T* dst) {
+  for (size_t i = 0; i < n; ++i, src += channels, dst += 4) {
+    if (channels <= 2) {
+      dst[0] = dst[1] = dst[2] = src[0];
+      dst[3] = channels == 2 ? src[1] : opaque;
+    } else {
+      std::copy_n(src, 3, dst);
+      dst[3] = channels == 4 ? src[3] : opaque;
+    }
+  }
+}
+
 template <typename T>
 std::vector<T> readRgba(OIIO::ImageInput& in, const std::string& name, T opaque, int& width,
                         int& height) {
@@ -112,33 +126,10 @@ std::vector<T> readRgba(OIIO::ImageInput& in, const std::string& name, T opaque,
   }
 
   std::vector<T> rgba(pixelCount * 4);
-  for (uint64_t i = 0; i < pixelCount; ++i) {
-    const T* src = &source[i * static_cast<uint64_t>(channels)];
-    T* dst = &rgba[i * 4];
-    if (channels <= 2) {
-      dst[0] = dst[1] = dst[2] = src[0];
-      dst[3] = channels == 2 ? src[1] : opaque;
-    } else {
-      std::copy_n(src, 3, dst);
-      dst[3] = channels == 4 ? src[3] : opaque;
-    }
-  }
+  expandToRgba(source.data(), channels, pixelCount, opaque, rgba.data());
   width = spec.width;
   height = spec.height;
   return rgba;
-}
-
-// Expands `channels` (1 to 4) of n pixels to RGBA in place order: grey to G = B = R, alpha 255.
-void expandToRgba(const uint8_t* src, int channels, size_t n, uint8_t* dst) {
-  for (size_t i = 0; i < n; ++i, src += channels, dst += 4) {
-    if (channels <= 2) {
-      dst[0] = dst[1] = dst[2] = src[0];
-      dst[3] = channels == 2 ? src[1] : 255;
-    } else {
-      std::copy_n(src, 3, dst);
-      dst[3] = channels == 4 ? src[3] : 255;
-    }
-  }
 }
 
 // The block-averaged read of TextureSize, for an image larger than maxSize.
@@ -167,7 +158,7 @@ Texture reducedTexture(OIIO::ImageInput& in, const std::string& name, int factor
     std::fill(sums.begin(), sums.end(), 0.0);
     for (int y = 0; y < y1 - y0; ++y) {
       expandToRgba(strip.data() + size_t(y) * size_t(spec.width) * size_t(channels), channels,
-                   size_t(spec.width), rgba.data());
+                   size_t(spec.width), uint8_t{255}, rgba.data());
       for (int x = 0; x < spec.width; ++x)
         for (int c = 0; c < 4; ++c) {
           const uint8_t v = rgba[size_t(x) * 4 + size_t(c)];

@@ -23,9 +23,8 @@ engine::Scene loadScene(const std::string& name) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension != ".gltf" && extension != ".glb")
-    throw engine::Error("--scene: '" + name +
-                        "' is neither a built-in scene (cornell, atrium, checker, lounge) nor a "
-                        ".gltf/.glb file");
+    throw engine::Error("--scene: '" + name + "' is neither a built-in scene (" +
+                        engine::builtinSceneList() + ") nor a .gltf/.glb file");
   engine::Scene scene = engine::loadGltf(name);
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());

@@ -100,8 +100,8 @@ Options parseOptions(int argc, char** argv) {
   }
   auto names = engine::builtinSceneNames();
   if (std::find(names.begin(), names.end(), o.scene) == names.end())
-    throw Error("--scene: '" + o.scene +
-                "' is not a built-in scene (cornell, atrium, checker, lounge)");
+    throw Error("--scene: '" + o.scene + "' is not a built-in scene (" +
+                engine::builtinSceneList() + ")");
   // The attribute pyramids and the 4^l / M of both rules need a power-of-two square.
   if (!std::has_single_bit(o.rsmSize))
     throw Error("--rsm: " + std::to_string(o.rsmSize) + " is not a power of two");

@@ -42,7 +42,9 @@ vec2 planeBarycentrics(vec3 origin, vec3 dir, vec3 a, vec3 b, vec3 c) {
 
 // KHR_texture_transform: the rows u, v of a 2 x 3 affine map (SceneMaterial); gradients take its
 // linear part only.
-vec2 transformUv(vec3 u, vec3 v, vec2 uv) { return vec2(dot(u, vec3(uv, 1.0)), dot(v, vec3(uv, 1.0))); }
+vec2 transformUv(vec3 u, vec3 v, vec2 uv) {
+  return vec2(dot(u, vec3(uv, 1.0)), dot(v, vec3(uv, 1.0)));
+}
 vec2 transformGradient(vec3 u, vec3 v, vec2 d) { return vec2(dot(u.xy, d), dot(v.xy, d)); }
 
 vec2 rayBarycentrics(vec2 pixel, vec3 a, vec3 b, vec3 c) {

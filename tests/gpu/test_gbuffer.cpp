@@ -397,6 +397,7 @@ TEST_P(MagnifiedTextures, MatchBilinearReference) {
 
 INSTANTIATE_TEST_SUITE_P(GBuffer, MagnifiedTextures,
                          ::testing::Values(engine::TextureTransform{},
-                                           engine::TextureTransform{{0.1f, 0.3f}, 0.3f, {0.5f, 0.5f}}));
+                                           engine::TextureTransform{
+                                               {0.1f, 0.3f}, 0.3f, {0.5f, 0.5f}}));
 
 }  // namespace

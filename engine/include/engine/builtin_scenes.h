@@ -23,6 +23,8 @@ namespace engine {
 
 // {"cornell", "atrium", "checker", "lounge"}.
 std::vector<std::string> builtinSceneNames();
+// The same names as error messages list them: "cornell, atrium, checker, lounge".
+std::string builtinSceneList();
 
 // Scene::source is "builtin:<name>". Throws engine::Error for an unknown name.
 Scene makeBuiltinScene(const std::string& name);

@@ -26,7 +26,7 @@ GBuffer createGBuffer(Context& ctx, uint32_t width, uint32_t height);
 // doubleSided: the back of a single-sided material is no surface, so it reflects nothing
 // (diffuse and specular 0, roughness 1) while its depth still shadows. A room built of
 // single-sided walls then bounces no light from the outside of its walls into itself
-// (docs/techniques/rsm.md, "Back faces").
+// (docs/techniques/vsgl-generation.md, "Back faces").
 enum class BackFaces : uint32_t { AsFront = 0, PerMaterial = 1 };
 
 class GBufferResolve {

@@ -7,7 +7,7 @@
 // not, u8/u16/u32 indices); POSITION, NORMAL, TEXCOORD_0 (float, or normalized u8/u16 UVs);
 // pbrMetallicRoughness factors and textures; KHR_materials_specular's factors (not its
 // textures); KHR_texture_transform; KHR_lights_punctual; perspective and orthographic cameras.
-// Points and lines primitives and optional extensions it does not implement are skipped with one
+// Points and lines primitives and optional extensions it does not read are skipped with one
 // line each in Scene::warnings. Ignored on purpose: samplers (repeat wrap and trilinear filtering
 // are assumed), emission, normal/occlusion maps, alpha modes, skins, morph targets and animations.
 // Primitives without a material get an appended default material: opaque white, metallic 0,

@@ -113,7 +113,7 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Camera> cameras;  // may be empty: see defaultCamera()
   // What the loader read past without using, one line each ("<file>: <what was skipped>"): a
-  // points or lines primitive, an optional extension it does not implement. The programs print
+  // points or lines primitive, an optional extension it does not read. The programs print
   // them; nothing else reads them.
   std::vector<std::string> warnings;
 

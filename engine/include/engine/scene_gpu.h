@@ -21,7 +21,6 @@ struct SceneGpu {
   uint32_t textureSize = 1;  // every layer is resampled to this square power-of-two size
 };
 
-
 SceneGpu uploadScene(Context& ctx, const Scene& scene);
 
 }  // namespace engine
