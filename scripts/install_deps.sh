@@ -10,6 +10,7 @@ packages=(
   glslang-tools spirv-tools               # GLSL -> SPIR-V, spirv-val
   libglm-dev                              # math
   libtinygltf-dev nlohmann-json3-dev      # glTF scenes
+  libdraco-dev libmeshoptimizer-dev       # glTF KHR_draco_mesh_compression, EXT_meshopt_compression
   libopenimageio-dev                      # EXR / PNG / texture I/O
   libembree-dev                           # ray tracing for the CPU ground truth (gi/truth)
   gnuplot-nox                             # the benchmark's charts (scripts/bench_charts.sh)

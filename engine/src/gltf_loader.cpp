@@ -9,6 +9,7 @@
 #include <exception>
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -20,6 +21,8 @@
 #include "engine/error.h"
 #include "engine/gltf.h"
 #include "engine/image_io.h"
+#include "gltf_draco.h"
+#include "gltf_meshopt.h"
 #include "gltf_preflight.h"
 #include "gltf_scene_builder.h"
 
@@ -260,7 +263,8 @@ Scene loadGltf(const std::string& path) {
 
   tinygltf::Model model;
   ImageDecoder decoder;
-  decoder.preflight = gltf_detail::preflight(path, gltf_detail::jsonText(path, ext == ".glb"));
+  const std::string jsonText = gltf_detail::jsonText(path, ext == ".glb");
+  decoder.preflight = gltf_detail::preflight(path, jsonText);
   decoder.gltfPath = path;
   decoder.model = &model;
   tinygltf::TinyGLTF parser;
@@ -270,8 +274,26 @@ Scene loadGltf(const std::string& path) {
   std::string warn;
   bool ok = false;
   try {
-    ok = ext == ".glb" ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
-                       : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+    // Compressed files hold what tinygltf refuses (a Draco primitive's index accessor without a
+    // bufferView, a meshopt fallback buffer without data): they are parsed from their edited
+    // JSON (gltf_draco.h, gltf_meshopt.h).
+    nlohmann::json doc = nlohmann::json::parse(jsonText, nullptr, false);
+    const bool edited =
+        !doc.is_discarded() && (gltf_detail::stashDracoIndices(doc) |
+                                gltf_detail::giveFallbackBuffersData(doc, ext == ".glb"));
+    const std::string json = edited ? doc.dump() : std::string();
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (json.empty()) {
+      ok = ext == ".glb" ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
+                         : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+    } else if (ext == ".glb") {
+      const std::vector<unsigned char> glb = gltf_detail::glbWithJson(path, json);
+      ok = parser.LoadBinaryFromMemory(&model, &err, &warn, glb.data(),
+                                       static_cast<unsigned int>(glb.size()), baseDir);
+    } else {
+      ok = parser.LoadASCIIFromString(&model, &err, &warn, json.data(),
+                                      static_cast<unsigned int>(json.size()), baseDir);
+    }
   } catch (const std::exception& e) {
     // tinygltf reports JSON syntax errors in `err`; this catches anything else it throws.
     throw Error(path + ": malformed glTF: " + joinLines(e.what()));
@@ -292,6 +314,9 @@ Scene loadGltf(const std::string& path) {
     }
     scene.textures.push_back(std::move(*decoder.textures[i]));
   }
+  const uint64_t budget = kMaxSceneBytes - decoder.preflight.bufferBytes - decoder.textureBytes;
+  const uint64_t meshoptBytes = gltf_detail::decodeMeshoptViews(path, model, budget);
+  gltf_detail::decodeDracoPrimitives(path, model, budget - meshoptBytes);
   gltf_detail::SceneBuilder(path, model, scene).build();
   return scene;
 }

@@ -16,8 +16,8 @@ namespace engine::gltf_detail {
 namespace {
 
 constexpr std::string_view kUnderstoodExtensions[] = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular",
-    "KHR_texture_transform"};
+    "EXT_meshopt_compression",         "KHR_draco_mesh_compression", "KHR_lights_punctual",
+    "KHR_materials_emissive_strength", "KHR_materials_specular",     "KHR_texture_transform"};
 
 bool isRegularFile(const std::string& path) {
   std::error_code ec;

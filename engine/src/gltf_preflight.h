@@ -19,7 +19,8 @@ constexpr size_t kMaxJsonDepth = 256;
 
 // Extensions a file may list as required. Emissive strength only scales emission, which this
 // module ignores anyway (see scene.h); of KHR_materials_specular the factors are read;
-// KHR_texture_transform is applied to both textures.
+// KHR_texture_transform is applied to both textures; KHR_draco_mesh_compression and
+// EXT_meshopt_compression are decoded (gltf_draco.h, gltf_meshopt.h).
 bool understoodExtension(std::string_view name);
 
 // The JSON text of `path`: the whole file for .gltf, the JSON chunk of a .glb (its header and

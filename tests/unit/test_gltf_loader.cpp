@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <meshoptimizer.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -102,11 +103,15 @@ void appendU32(std::vector<uint8_t>& out, uint32_t value) {
   for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(value >> (8 * i)));
 }
 
-// Converts a .gltf whose buffer 0 is a data URI into a .glb: the buffer becomes the BIN chunk,
-// and data-URI images move into it behind bufferViews (the way exporters embed images).
+// Converts a .gltf with one buffer (a data URI or a file beside it) into a .glb: the buffer
+// becomes the BIN chunk, and data-URI images move into it behind bufferViews (the way exporters
+// embed images).
 void convertToGlb(const fs::path& gltfPath, const fs::path& glbPath) {
   json gltf = json::parse(readText(gltfPath));
-  std::vector<uint8_t> bin = decodeDataUri(gltf["buffers"][0]["uri"]);
+  const std::string bufferUri = gltf["buffers"][0]["uri"];
+  std::vector<uint8_t> bin = bufferUri.rfind("data:", 0) == 0
+                                 ? decodeDataUri(bufferUri)
+                                 : readBytes(gltfPath.parent_path() / bufferUri);
   gltf["buffers"][0].erase("uri");
   if (gltf.contains("images")) {
     for (json& image : gltf["images"]) {
@@ -589,7 +594,7 @@ TEST(GltfLoader, LinesBesideTrianglesAreSkippedWithOneWarning) {
 }
 
 // An optional extension the loader does not implement is named once; a required one refuses
-// the file with its name, before tinygltf (which calls a Draco file's accessor invalid).
+// the file with its name, before tinygltf (which would fail on its data with unrelated words).
 TEST(GltfLoader, UnimplementedExtensionsAreNamed) {
   TempDir dir;
   const fs::path optional = editedTriangle(dir, "optional.gltf", [](json& g) {
@@ -600,14 +605,227 @@ TEST(GltfLoader, UnimplementedExtensionsAreNamed) {
   EXPECT_EQ(scene.warnings[0], optional.string() +
                                    ": ignores extension 'KHR_materials_clearcoat' (the loader "
                                    "does not read it)");
-  const fs::path draco = editedTriangle(dir, "draco.gltf", [](json& g) {
-    g["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-    g["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-    g["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"] = {
-        {"bufferView", 9}, {"attributes", {{"POSITION", 0}}}};
-    for (json& a : g["accessors"]) a.erase("bufferView");
+  const fs::path basisu = editedTriangle(dir, "basisu.gltf", [](json& g) {
+    g["extensionsUsed"] = {"KHR_texture_basisu"};
+    g["extensionsRequired"] = {"KHR_texture_basisu"};
   });
-  expectLoadError(draco, "requires unsupported extension 'KHR_draco_mesh_compression'");
+  expectLoadError(basisu, "requires unsupported extension 'KHR_texture_basisu'");
+}
+
+// KHR_draco_mesh_compression (engine/src/gltf_draco.h): draco_grid.gltf, a 5 x 5 grid on a
+// tilted plane compressed losslessly by draco_encoder (tests/data/gltf/make_test_gltfs.py),
+// whose accessors have no bufferView. Draco's edgebreaker reorders points and faces, so the
+// check is by position: every loaded corner lies on a grid vertex and carries that vertex's UV
+// and the plane's normal, the winding agrees with the normal, and the area is the plane's.
+TEST(GltfLoaderDraco, DecodesPositionsNormalsAndTextureCoordinates) {
+  const engine::Scene scene = engine::loadGltf((kGltfData / "draco_grid.gltf").string());
+  EXPECT_TRUE(scene.warnings.empty());
+  ASSERT_EQ(scene.triangleCount(), 32u);
+  const glm::vec3 normal = glm::normalize(glm::vec3(0.0f, 2.0f, 1.0f));
+  double area = 0.0;
+  for (uint32_t t = 0; t < scene.triangleCount(); ++t) {
+    area += 0.5 * glm::length(glm::cross(corner(scene, t, 1) - corner(scene, t, 0),
+                                         corner(scene, t, 2) - corner(scene, t, 0)));
+    EXPECT_GT(glm::dot(geometricNormal(scene, t), normal), 0.9999f) << "triangle " << t;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = scene.indices[t * 3 + uint32_t(k)];
+      const glm::vec3 p = scene.positions[v];
+      // The grid vertex (x, y) sits at (x / 4, -y / 8, y / 4) with UV (x / 4, y / 4).
+      const float x = std::round(p.x * 4.0f), y = std::round(p.z * 4.0f);
+      expectVec3Near(p, {x / 4.0f, -y / 8.0f, y / 4.0f}, 1e-6f);
+      expectVec3Near(scene.normals[v], normal, 1e-6f);
+      EXPECT_NEAR(scene.uvs[v].x, x / 4.0f, 1e-6f);
+      EXPECT_NEAR(scene.uvs[v].y, y / 4.0f, 1e-6f);
+    }
+  }
+  EXPECT_NEAR(area, std::sqrt(1.25), 1e-5);  // 1 m x sqrt(1^2 + 0.5^2) m
+
+  // The same file as a .glb (tinygltf parses it from memory with the edited JSON chunk).
+  TempDir dir;
+  convertToGlb(kGltfData / "draco_grid.gltf", dir / "draco_grid.glb");
+  const engine::Scene binary = engine::loadGltf((dir / "draco_grid.glb").string());
+  EXPECT_EQ(binary.indices, scene.indices);
+  ASSERT_EQ(binary.positions.size(), scene.positions.size());
+  for (size_t i = 0; i < scene.positions.size(); ++i)
+    EXPECT_EQ(binary.positions[i], scene.positions[i]);
+}
+
+// EXT_meshopt_compression (engine/src/gltf_meshopt.h): the Draco test's 5 x 5 grid with its
+// positions plain (mode ATTRIBUTES), its texture coordinates through the EXPONENTIAL filter and
+// its indices as TRIANGLES, encoded by meshoptimizer here into compressed.bin. The views point
+// at a fallback buffer without data, as a file that requires the extension may leave it.
+struct MeshoptGrid {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> uvs;
+  std::vector<uint32_t> indices;
+};
+
+MeshoptGrid meshoptGrid() {
+  MeshoptGrid g;
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 5; ++x) {
+      g.positions.push_back({float(x) / 4.0f, -float(y) / 8.0f, float(y) / 4.0f});
+      g.uvs.push_back({float(x) / 4.0f, float(y) / 4.0f});
+    }
+  for (uint32_t y = 0; y < 4; ++y)
+    for (uint32_t x = 0; x < 4; ++x) {
+      const uint32_t i = y * 5 + x;
+      g.indices.insert(g.indices.end(), {i, i + 5, i + 1, i + 1, i + 5, i + 6});
+    }
+  return g;
+}
+
+// Writes meshopt.gltf and compressed.bin into `dir`; `edit` changes the JSON first.
+fs::path writeMeshoptGltf(const TempDir& dir, const MeshoptGrid& g,
+                          const std::function<void(json&)>& edit = {}) {
+  std::vector<uint8_t> compressed;
+  json views = json::array();
+  size_t plainOffset = 0;
+  const auto addView = [&](std::vector<uint8_t> bytes, size_t count, size_t stride,
+                           const char* mode, const char* filter) {
+    const size_t begin = compressed.size();
+    compressed.insert(compressed.end(), bytes.begin(), bytes.end());
+    while (compressed.size() % 4) compressed.push_back(0);
+    json view = {{"buffer", 1}, {"byteOffset", plainOffset}, {"byteLength", count * stride}};
+    if (std::string(mode) == "ATTRIBUTES") view["byteStride"] = stride;
+    view["extensions"]["EXT_meshopt_compression"] = {
+        {"buffer", 0},          {"byteOffset", begin}, {"byteLength", bytes.size()},
+        {"byteStride", stride}, {"count", count},      {"mode", mode},
+        {"filter", filter}};
+    views.push_back(view);
+    plainOffset += count * stride;
+  };
+  const auto vertices = [](const void* data, size_t count, size_t stride) {
+    std::vector<uint8_t> out(meshopt_encodeVertexBufferBound(count, stride));
+    out.resize(meshopt_encodeVertexBuffer(out.data(), out.size(), data, count, stride));
+    return out;
+  };
+  std::vector<uint8_t> indices(
+      meshopt_encodeIndexBufferBound(g.indices.size(), g.positions.size()));
+  indices.resize(meshopt_encodeIndexBuffer(indices.data(), indices.size(), g.indices.data(),
+                                           g.indices.size()));
+  addView(indices, g.indices.size(), 4, "TRIANGLES", "NONE");
+  addView(vertices(g.positions.data(), g.positions.size(), 12), g.positions.size(), 12,
+          "ATTRIBUTES", "NONE");
+  std::vector<uint32_t> exponential(g.uvs.size() * 2);
+  meshopt_encodeFilterExp(exponential.data(), g.uvs.size(), 8, 24, &g.uvs[0].x);
+  addView(vertices(exponential.data(), g.uvs.size(), 8), g.uvs.size(), 8, "ATTRIBUTES",
+          "EXPONENTIAL");
+  writeBytes(dir / "compressed.bin", compressed);
+  json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"EXT_meshopt_compression"}},
+      {"extensionsRequired", {"EXT_meshopt_compression"}},
+      {"buffers",
+       {{{"uri", "compressed.bin"}, {"byteLength", compressed.size()}},
+        {{"byteLength", plainOffset},
+         {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}},
+      {"bufferViews", views},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5125},
+         {"count", g.indices.size()},
+         {"type", "SCALAR"}},
+        {{"bufferView", 1},
+         {"componentType", 5126},
+         {"count", g.positions.size()},
+         {"type", "VEC3"},
+         {"min", {0.0, -0.5, 0.0}},
+         {"max", {1.0, 0.0, 1.0}}},
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", g.uvs.size()}, {"type", "VEC2"}}}},
+      {"meshes",
+       {{{"name", "grid"},
+         {"primitives",
+          {{{"attributes", {{"POSITION", 1}, {"TEXCOORD_0", 2}}}, {"indices", 0}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+  if (edit) edit(gltf);
+  writeText(dir / "meshopt.gltf", gltf.dump());
+  return dir / "meshopt.gltf";
+}
+
+// Each triangle rotated to start at its smallest index: the index codec may rotate triangles.
+std::vector<uint32_t> canonicalTriangles(std::vector<uint32_t> indices) {
+  for (size_t t = 0; t + 2 < indices.size(); t += 3)
+    while (indices[t] > indices[t + 1] || indices[t] > indices[t + 2])
+      std::rotate(indices.begin() + std::ptrdiff_t(t), indices.begin() + std::ptrdiff_t(t) + 1,
+                  indices.begin() + std::ptrdiff_t(t) + 3);
+  return indices;
+}
+
+TEST(GltfLoaderMeshopt, DecodesAttributesFiltersAndTriangles) {
+  TempDir dir;
+  const MeshoptGrid g = meshoptGrid();
+  for (const bool binary : {false, true}) {
+    SCOPED_TRACE(binary ? ".glb" : ".gltf");
+    fs::path path = writeMeshoptGltf(dir, g);
+    if (binary) {
+      convertToGlb(path, dir / "meshopt.glb");
+      path = dir / "meshopt.glb";
+    }
+    const engine::Scene scene = engine::loadGltf(path.string());
+    EXPECT_TRUE(scene.warnings.empty());
+    ASSERT_EQ(scene.positions.size(), g.positions.size());
+    for (size_t i = 0; i < g.positions.size(); ++i) {
+      EXPECT_EQ(scene.positions[i], g.positions[i]) << "vertex " << i;
+      EXPECT_NEAR(scene.uvs[i].x, g.uvs[i].x, 1e-6f) << "vertex " << i;
+      EXPECT_NEAR(scene.uvs[i].y, g.uvs[i].y, 1e-6f) << "vertex " << i;
+    }
+    EXPECT_EQ(canonicalTriangles(scene.indices), canonicalTriangles(g.indices));
+  }
+}
+
+TEST(GltfLoaderMeshopt, BadViewsAreRefusedWithOneLine) {
+  TempDir dir;
+  const MeshoptGrid g = meshoptGrid();
+  const auto ext = [](json& gltf, int view) -> json& {
+    return gltf["bufferViews"][view]["extensions"]["EXT_meshopt_compression"];
+  };
+  expectLoadError(writeMeshoptGltf(dir, g, [&](json& j) { ext(j, 1)["byteLength"] = 5; }),
+                  "bufferView 1: EXT_meshopt_compression data do not decode");
+  expectLoadError(
+      writeMeshoptGltf(dir, g, [&](json& j) { ext(j, 0)["byteStride"] = 8; }),
+      "bufferView 0: EXT_meshopt_compression byteStride 8 does not suit mode TRIANGLES");
+  expectLoadError(writeMeshoptGltf(dir, g, [&](json& j) { ext(j, 2)["count"] = 24; }),
+                  "bufferView 2: EXT_meshopt_compression decodes 192 bytes, the view holds 200");
+  expectLoadError(writeMeshoptGltf(dir, g, [&](json& j) { ext(j, 1).erase("mode"); }),
+                  "bufferView 1: EXT_meshopt_compression mode '' is not ATTRIBUTES");
+  expectLoadError(writeMeshoptGltf(dir, g, [&](json& j) { ext(j, 1)["filter"] = "OCTAHEDRAL"; }),
+                  "bufferView 1: EXT_meshopt_compression filter 'OCTAHEDRAL' does not suit "
+                  "byteStride 12");
+}
+
+// A Draco primitive whose data cannot be what its accessors say is refused with one line that
+// names the file, the mesh and the primitive.
+TEST(GltfLoaderDraco, BadDataIsRefusedWithOneLine) {
+  TempDir dir;
+  fs::copy_file(kGltfData / "draco_grid.drc", dir / "draco_grid.drc");
+  const json original = json::parse(readText(kGltfData / "draco_grid.gltf"));
+  const auto edited = [&](const std::string& name, const std::function<void(json&)>& edit) {
+    json gltf = original;
+    edit(gltf);
+    writeText(dir / name, gltf.dump());
+    return dir / name;
+  };
+  const auto draco = [](json& g) -> json& {
+    return g["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"];
+  };
+  const std::string where = "mesh 'grid' primitive 0: ";
+  expectLoadError(edited("half.gltf",
+                         [](json& g) {
+                           g["bufferViews"][0]["byteLength"] =
+                               g["bufferViews"][0]["byteLength"].get<int>() / 2;
+                         }),
+                  where + "Draco data does not decode");
+  expectLoadError(edited("id.gltf", [&](json& g) { draco(g)["attributes"]["NORMAL"] = 17; }),
+                  where + "attribute id 17 is not in the Draco bitstream");
+  expectLoadError(edited("count.gltf", [](json& g) { g["accessors"][3]["count"] = 24; }),
+                  where + "accessor 3 has count 24, the Draco mesh 25 points");
+  expectLoadError(edited("view.gltf", [&](json& g) { draco(g)["bufferView"] = 4; }),
+                  where + "Draco bufferView 4 does not exist");
+  expectLoadError(edited("name.gltf", [&](json& g) { draco(g)["attributes"]["COLOR_0"] = 3; }),
+                  where + "Draco attribute 'COLOR_0' is not among the primitive's attributes");
 }
 
 TEST(GltfLoaderErrors, NonFiniteAttributesNameTheAccessor) {
@@ -734,9 +952,8 @@ TEST(GltfLoaderErrors, BadReferencesAndValues) {
        "outerConeAngle"},
       {"no triangles", [](json& g) { g["nodes"][0].erase("mesh"); }, "scene has no triangles"},
       {"scene", [](json& g) { g["scene"] = 3; }, "scene 3 does not exist"},
-      {"required extension",
-       [](json& g) { g["extensionsRequired"] = {"KHR_draco_mesh_compression"}; },
-       "requires unsupported extension 'KHR_draco_mesh_compression'"},
+      {"required extension", [](json& g) { g["extensionsRequired"] = {"KHR_texture_basisu"}; },
+       "requires unsupported extension 'KHR_texture_basisu'"},
   };
   TempDir dir;
   for (const Case& c : cases) {

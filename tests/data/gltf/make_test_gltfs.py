@@ -2,13 +2,17 @@
 """Regenerates the small glTF files used by tests/unit/test_gltf_loader.cpp.
 
 The JSON is written out by hand below; only the binary buffers (base64 data URIs) and the 2x2
-PNG need a program. Run from anywhere: python3 tests/data/gltf/make_test_gltfs.py
+PNG need a program, and the Draco bitstream Debian's draco_encoder (package draco), which this
+script runs when it is installed. Run from anywhere: python3 tests/data/gltf/make_test_gltfs.py
 """
 import base64
 import json
 import math
 import os
+import shutil
 import struct
+import subprocess
+import tempfile
 import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -282,6 +286,56 @@ def bad_files():
     simple("bad_missing_buffer.gltf", missing_buffer)
 
 
+# KHR_draco_mesh_compression: a 5 x 5 grid on a tilted plane, 32 triangles, one normal and a UV
+# per vertex, compressed losslessly (no quantization) by draco_encoder into draco_grid.drc. Its
+# accessors carry no bufferView; the extension names the bitstream's attribute ids, which
+# draco_encoder gives in the order of the OBJ's elements: positions 0, texture coordinates 1,
+# normals 2.
+DRACO_GRID_NORMAL = (0.0, 2.0 / math.sqrt(5.0), 1.0 / math.sqrt(5.0))
+
+
+def draco_grid():
+    if shutil.which("draco_encoder") is None:
+        print("draco_encoder not found (apt-get install draco): draco_grid.drc kept as it is")
+    else:
+        lines = [f"v {x * 0.25:g} {-0.125 * y:g} {0.25 * y:g}" for y in range(5) for x in range(5)]
+        lines += [f"vt {x / 4:g} {y / 4:g}" for y in range(5) for x in range(5)]
+        lines.append("vn %.9f %.9f %.9f" % DRACO_GRID_NORMAL)
+        for y in range(4):
+            for x in range(4):
+                i = y * 5 + x + 1
+                for a, b, c in ((i, i + 5, i + 1), (i + 1, i + 5, i + 6)):
+                    lines.append(f"f {a}/{a}/1 {b}/{b}/1 {c}/{c}/1")
+        with tempfile.TemporaryDirectory() as tmp:
+            obj = os.path.join(tmp, "grid.obj")
+            with open(obj, "w") as f:
+                f.write("\n".join(lines) + "\n")
+            subprocess.run(["draco_encoder", "-i", obj, "-o", os.path.join(HERE, "draco_grid.drc"),
+                            "-qp", "0", "-qt", "0", "-qn", "0", "-cl", "7"],
+                           check=True, stdout=subprocess.DEVNULL)
+    size = os.path.getsize(os.path.join(HERE, "draco_grid.drc"))
+    gltf = {"asset": {"version": "2.0", "generator": "make_test_gltfs.py"},
+            "extensionsUsed": ["KHR_draco_mesh_compression"],
+            "extensionsRequired": ["KHR_draco_mesh_compression"],
+            "buffers": [{"uri": "draco_grid.drc", "byteLength": size}],
+            "bufferViews": [{"buffer": 0, "byteLength": size}],
+            "accessors": [
+                {"componentType": U32, "count": 96, "type": "SCALAR"},
+                {"componentType": FLOAT, "count": 25, "type": "VEC3",
+                 "min": [0.0, -0.5, 0.0], "max": [1.0, 0.0, 1.0]},
+                {"componentType": FLOAT, "count": 25, "type": "VEC3"},
+                {"componentType": FLOAT, "count": 25, "type": "VEC2"}],
+            "meshes": [{"name": "grid", "primitives": [{
+                "attributes": {"POSITION": 1, "NORMAL": 2, "TEXCOORD_0": 3}, "indices": 0,
+                "extensions": {"KHR_draco_mesh_compression": {
+                    "bufferView": 0,
+                    "attributes": {"POSITION": 0, "TEXCOORD_0": 1, "NORMAL": 2}}}}]}],
+            "nodes": [{"mesh": 0}],
+            "scenes": [{"nodes": [0]}],
+            "scene": 0}
+    save("draco_grid.gltf", gltf)
+
+
 if __name__ == "__main__":
     triangle_spot()
     hierarchy()
@@ -290,3 +344,4 @@ if __name__ == "__main__":
     mirrored()
     textured()
     bad_files()
+    draco_grid()
