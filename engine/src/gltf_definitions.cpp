@@ -1,5 +1,6 @@
 // The file's top-level materials, lights and cameras, validated and converted once; nodes then
 // instance them (gltf_loader.cpp, gltf_meshes.cpp).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -19,10 +20,6 @@ bool inUnitRange(double v) {
 // Maps a glTF texture to the Scene::textures index of its source image.
 int SceneBuilder::textureImage(const tinygltf::TextureInfo& info, const std::string& where) const {
   if (info.index < 0) return -1;
-  if (info.texCoord != 0) {
-    fail(where + " uses TEXCOORD_" + std::to_string(info.texCoord) +
-         " (only TEXCOORD_0 is supported)");
-  }
   const tinygltf::Texture& texture = at(model_.textures, info.index, "texture", where);
   if (texture.source < 0) {
     fail(where + ": texture " + std::to_string(info.index) +
@@ -32,8 +29,8 @@ int SceneBuilder::textureImage(const tinygltf::TextureInfo& info, const std::str
   return texture.source;
 }
 
-// KHR_texture_transform on a textureInfo: offset, rotation and scale, finite; its texCoord, which
-// overrides the textureInfo's, must name TEXCOORD_0 like every texture here.
+// KHR_texture_transform on a textureInfo: offset, rotation and scale, finite (its texCoord is
+// read by textureCoordinateSet).
 TextureTransform SceneBuilder::textureTransform(const tinygltf::TextureInfo& info,
                                                 const std::string& where) const {
   TextureTransform t;
@@ -56,10 +53,25 @@ TextureTransform SceneBuilder::textureTransform(const tinygltf::TextureInfo& inf
   pair("offset", t.offset);
   pair("scale", t.scale);
   if (v.Has("rotation")) t.rotation = number(v.Get("rotation"), "rotation");
-  if (v.Has("texCoord") &&
-      (!v.Get("texCoord").IsNumber() || v.Get("texCoord").GetNumberAsDouble() != 0.0))
-    fail(what + " texCoord: only TEXCOORD_0 is supported");
   return t;
+}
+
+// The TEXCOORD_n set a textureInfo samples: KHR_texture_transform's texCoord where it gives one
+// (it overrides the textureInfo's), else the textureInfo's; -1 without a texture.
+int SceneBuilder::textureCoordinateSet(const tinygltf::TextureInfo& info,
+                                       const std::string& where) const {
+  if (info.index < 0) return -1;
+  if (info.texCoord < 0 || info.texCoord > kMaxTextureCoordinateSet)
+    fail(where + " texCoord " + std::to_string(info.texCoord) + " is out of range");
+  const auto ext = info.extensions.find("KHR_texture_transform");
+  if (ext == info.extensions.end() || !ext->second.IsObject() || !ext->second.Has("texCoord"))
+    return info.texCoord;
+  const tinygltf::Value& set = ext->second.Get("texCoord");
+  const double n = set.IsNumber() ? set.GetNumberAsDouble() : -1.0;
+  if (!(n >= 0.0 && n <= kMaxTextureCoordinateSet && n == std::floor(n)))
+    fail(where + " KHR_texture_transform texCoord must be an integer in [0, " +
+         std::to_string(kMaxTextureCoordinateSet) + "]");
+  return static_cast<int>(n);
 }
 
 // KHR_materials_specular: its two factors. Its textures (specularTexture, specularColorTexture)
@@ -112,6 +124,22 @@ void SceneBuilder::convertMaterials() {
     out.baseColorTransform = textureTransform(pbr.baseColorTexture, where + " baseColorTexture");
     out.metallicRoughnessTransform =
         textureTransform(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
+    // Vertices carry one texture coordinate set: the one the material's textures sample. Where
+    // its two textures sample different sets, the base colour (what the bounce takes its colour
+    // from) keeps its set and the metallic-roughness texture is skipped, its factors standing for
+    // the whole surface.
+    const int baseSet = textureCoordinateSet(pbr.baseColorTexture, where + " baseColorTexture");
+    const int roughSet =
+        textureCoordinateSet(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
+    if (baseSet >= 0 && roughSet >= 0 && baseSet != roughSet) {
+      scene_.warnings.push_back(located(
+          where + " metallicRoughnessTexture: skipped (it samples TEXCOORD_" +
+          std::to_string(roughSet) + ", the base colour TEXCOORD_" + std::to_string(baseSet) +
+          "; one set per material is read: its factors stand for the surface)"));
+      out.metallicRoughnessTexture = -1;
+      out.metallicRoughnessTransform = TextureTransform{};
+    }
+    materialCoordinateSets_.push_back(baseSet >= 0 ? baseSet : std::max(roughSet, 0));
     out.doubleSided = in.doubleSided;
     convertSpecular(in, where, out);
     scene_.materials.push_back(std::move(out));

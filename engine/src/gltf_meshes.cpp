@@ -90,17 +90,23 @@ void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm:
     normals =
         viewAccessor(a, where + " NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
   }
+  // The texture coordinate set the material's textures sample (convertMaterials).
+  const uint32_t material = materialFor(primitive, where);
+  const int set = material < materialCoordinateSets_.size() ? materialCoordinateSets_[material] : 0;
+  const std::string uvName = "TEXCOORD_" + std::to_string(set);
   std::optional<AccessorView> uvs;
-  if (const int a = attribute("TEXCOORD_0"); a >= 0) {
-    uvs = viewAccessor(a, where + " TEXCOORD_0", TINYGLTF_TYPE_VEC2,
+  if (const int a = attribute(uvName.c_str()); a >= 0) {
+    uvs = viewAccessor(a, where + " " + uvName, TINYGLTF_TYPE_VEC2,
                        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
     if (uvs->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !uvs->normalized) {
-      fail(where + " TEXCOORD_0: integer texture coordinates must be normalized");
+      fail(where + " " + uvName + ": integer texture coordinates must be normalized");
     }
+  } else if (set > 0) {
+    fail(where + ": its material's textures sample " + uvName + ", which the primitive lacks");
   }
   if ((normals && normals->count != vertexCount) || (uvs && uvs->count != vertexCount)) {
-    fail(where + ": NORMAL/TEXCOORD_0 counts differ from the POSITION count " +
+    fail(where + ": NORMAL/" + uvName + " counts differ from the POSITION count " +
          std::to_string(vertexCount));
   }
 
@@ -133,7 +139,6 @@ void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm:
   if (vertexCount > std::numeric_limits<uint32_t>::max() - base) {
     fail(where + ": the scene has more than 2^32 vertices");
   }
-  const uint32_t material = materialFor(primitive, where);
 
   // World-space positions; normals by the inverse-transpose, which keeps them perpendicular to
   // the surface under non-uniform scale.
@@ -212,7 +217,7 @@ void SceneBuilder::addPrimitive(const tinygltf::Primitive& primitive, const glm:
     const glm::dvec2 uv =
         uvs ? glm::dvec2(readFloat(*uvs, v, 0), readFloat(*uvs, v, 1)) : glm::dvec2(0.0);
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
-      fail(where + " TEXCOORD_0: non-finite texture coordinate at vertex " + std::to_string(v));
+      fail(where + " " + uvName + ": non-finite texture coordinate at vertex " + std::to_string(v));
     scene_.uvs.emplace_back(uv);
   }
   for (uint32_t corner : triangles) scene_.indices.push_back(static_cast<uint32_t>(base) + corner);

@@ -40,6 +40,7 @@ class SceneBuilder : private ModelReader {
   int textureImage(const tinygltf::TextureInfo& info, const std::string& where) const;
   TextureTransform textureTransform(const tinygltf::TextureInfo& info,
                                     const std::string& where) const;
+  int textureCoordinateSet(const tinygltf::TextureInfo& info, const std::string& where) const;
   void convertMaterials();
   void convertSpecular(const tinygltf::Material& in, const std::string& where, Material& out);
   void convertLights();
@@ -62,6 +63,11 @@ class SceneBuilder : private ModelReader {
   std::vector<Light> lights_;    // model.lights, validated; instanced by nodes
   std::vector<Camera> cameras_;  // model.cameras, validated; instanced by nodes
   std::optional<Material> defaultMaterial_;
+  // Per glTF material, the TEXCOORD_n set its textures sample (0 without textures); the default
+  // material has none.
+  std::vector<int> materialCoordinateSets_;
+  // glTF sets no limit; a set past this is a broken file, not a real one.
+  static constexpr int kMaxTextureCoordinateSet = 31;
 };
 
 }  // namespace engine::gltf_detail

@@ -445,9 +445,72 @@ TEST(GltfLoader, ReadsAndWritesKhrTextureTransform) {
   expectLoadError(dir / "bad_rotation.gltf",
                   "material 0 baseColorTexture KHR_texture_transform rotation must be a finite "
                   "number");
-  pbr["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {{"texCoord", 1}};
+  pbr["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {{"texCoord", 0.5}};
   writeText(dir / "bad_texcoord.gltf", gltf.dump());
-  expectLoadError(dir / "bad_texcoord.gltf", "texCoord: only TEXCOORD_0 is supported");
+  expectLoadError(dir / "bad_texcoord.gltf",
+                  "material 0 baseColorTexture KHR_texture_transform texCoord must be an integer");
+}
+
+// Textures on TEXCOORD_1: textured.gltf with a second set (0.5, 0.5), (0.75, 0.5), (0.5, 0.75)
+// in a buffer file of its own. The vertices carry the set the material's textures sample; where
+// the two textures sample different sets the base colour's is kept and the metallic-roughness
+// texture skipped with a warning; a set the primitive lacks is refused.
+TEST(GltfLoader, TexturesOnASecondCoordinateSet) {
+  TempDir dir;
+  fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png");
+  const std::vector<float> second = {0.5f, 0.5f, 0.75f, 0.5f, 0.5f, 0.75f};
+  std::vector<uint8_t> bytes(second.size() * sizeof(float));
+  std::memcpy(bytes.data(), second.data(), bytes.size());
+  writeBytes(dir / "second.bin", bytes);
+  json base = json::parse(readText(kGltfData / "textured.gltf"));
+  base["buffers"].push_back({{"uri", "second.bin"}, {"byteLength", bytes.size()}});
+  base["bufferViews"].push_back(
+      {{"buffer", base["buffers"].size() - 1}, {"byteLength", bytes.size()}});
+  base["accessors"].push_back({{"bufferView", base["bufferViews"].size() - 1},
+                               {"componentType", 5126},
+                               {"count", 3},
+                               {"type", "VEC2"}});
+  base["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = base["accessors"].size() - 1;
+  const auto load = [&](const std::string& name, const std::function<void(json&)>& edit) {
+    json gltf = base;
+    edit(gltf);
+    writeText(dir / name, gltf.dump());
+    return engine::loadGltf((dir / name).string());
+  };
+  const auto expectSecondSet = [&](const engine::Scene& scene) {
+    ASSERT_EQ(scene.uvs.size(), 3u);
+    for (size_t v = 0; v < 3; ++v)
+      EXPECT_EQ(scene.uvs[v], glm::vec2(second[2 * v], second[2 * v + 1])) << "vertex " << v;
+  };
+
+  const engine::Scene both = load("both.gltf", [](json& g) {
+    g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+    g["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"]["texCoord"] = 1;
+  });
+  EXPECT_TRUE(both.warnings.empty());
+  expectSecondSet(both);
+  EXPECT_GE(both.materials[0].metallicRoughnessTexture, 0);
+
+  const engine::Scene mixed = load("mixed.gltf", [](json& g) {
+    g["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]
+     ["KHR_texture_transform"] = {{"texCoord", 1}};
+    g["extensionsUsed"].push_back("KHR_texture_transform");
+  });
+  ASSERT_EQ(mixed.warnings.size(), 1u);
+  EXPECT_NE(mixed.warnings[0].find("material 0 metallicRoughnessTexture: skipped (it samples "
+                                   "TEXCOORD_0, the base colour TEXCOORD_1"),
+            std::string::npos)
+      << mixed.warnings[0];
+  expectSecondSet(mixed);
+  EXPECT_EQ(mixed.materials[0].metallicRoughnessTexture, -1);
+  EXPECT_GE(mixed.materials[0].baseColorTexture, 0);
+
+  json lacking = base;
+  lacking["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 2;
+  writeText(dir / "lacking.gltf", lacking.dump());
+  expectLoadError(dir / "lacking.gltf",
+                  "primitive 0: its material's textures sample TEXCOORD_2, which the primitive "
+                  "lacks");
 }
 
 // KHR_materials_specular's factors are read (textures are not supported), written back only

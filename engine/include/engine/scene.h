@@ -104,7 +104,7 @@ struct Scene {
   // are generated as area-weighted averages of the face normals sharing a vertex position.
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
-  std::vector<glm::vec2> uvs;              // (0,0) when the mesh has no TEXCOORD_0
+  std::vector<glm::vec2> uvs;  // the set the material samples (TEXCOORD_n); (0,0) without it
   std::vector<uint32_t> indices;           // 3 per triangle, counter-clockwise front faces
   std::vector<uint32_t> triangleMaterial;  // one material index per triangle
 
