@@ -180,18 +180,19 @@ std::vector<unsigned char> glbWithJson(const std::string& path, const std::strin
     return uint32_t(file.at(at)) | uint32_t(file.at(at + 1)) << 8 |
            uint32_t(file.at(at + 2)) << 16 | uint32_t(file.at(at + 3)) << 24;
   };
-  const size_t rest = 20 + size_t(u32(12));  // the binary chunk and anything after it
+  const size_t rest = std::min(20 + size_t(u32(12)), file.size());  // where the binary chunk starts
   std::string padded = json;
   padded.append((4 - padded.size() % 4) % 4, ' ');
+  const size_t total = 20 + padded.size() + (file.size() - rest);
   std::vector<unsigned char> out;
-  out.reserve(20 + padded.size() + file.size() - std::min(rest, file.size()));
+  out.reserve(total);
   for (const char c : {'g', 'l', 'T', 'F'}) out.push_back(static_cast<unsigned char>(c));
   appendU32(out, 2);
-  appendU32(out, uint32_t(20 + padded.size() + file.size() - std::min(rest, file.size())));
+  appendU32(out, uint32_t(total));
   appendU32(out, uint32_t(padded.size()));
   for (const char c : {'J', 'S', 'O', 'N'}) out.push_back(static_cast<unsigned char>(c));
   out.insert(out.end(), padded.begin(), padded.end());
-  if (rest < file.size()) out.insert(out.end(), file.begin() + std::ptrdiff_t(rest), file.end());
+  out.insert(out.end(), file.begin() + std::ptrdiff_t(rest), file.end());
   return out;
 }
 

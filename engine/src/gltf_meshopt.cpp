@@ -2,7 +2,6 @@
 
 #include <meshoptimizer.h>
 
-#include <algorithm>
 #include <vector>
 
 #include "engine/error.h"

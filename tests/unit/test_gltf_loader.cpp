@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -889,6 +890,32 @@ TEST(GltfLoaderDraco, BadDataIsRefusedWithOneLine) {
                   where + "Draco bufferView 4 does not exist");
   expectLoadError(edited("name.gltf", [&](json& g) { draco(g)["attributes"]["COLOR_0"] = 3; }),
                   where + "Draco attribute 'COLOR_0' is not among the primitive's attributes");
+}
+
+// Deterministic corruption of the Draco bitstream and of the meshopt streams: every result must
+// load or fail with engine::Error, never crash (run under VSGL_SANITIZE to catch silent overreads).
+TEST(GltfLoaderErrors, CorruptedCompressedDataNeverCrashes) {
+  TempDir dir;
+  fs::copy_file(kGltfData / "draco_grid.gltf", dir / "draco_grid.gltf");
+  const std::vector<uint8_t> draco = readBytes(kGltfData / "draco_grid.drc");
+  writeMeshoptGltf(dir, meshoptGrid());
+  const std::vector<uint8_t> meshopt = readBytes(dir / "compressed.bin");
+  uint32_t state = 2026u;
+  const auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return state >> 8;
+  };
+  for (int i = 0; i < 200; ++i) {
+    for (const auto& [bytes, file, gltf] :
+         {std::tuple{&draco, "draco_grid.drc", "draco_grid.gltf"},
+          std::tuple{&meshopt, "compressed.bin", "meshopt.gltf"}}) {
+      std::vector<uint8_t> mutated = *bytes;
+      for (int k = 0; k < 1 + i % 4; ++k)
+        mutated[next() % mutated.size()] = static_cast<uint8_t>(next());
+      writeBytes(dir / file, mutated);
+      expectLoadsOrClean(dir / gltf);
+    }
+  }
 }
 
 TEST(GltfLoaderErrors, NonFiniteAttributesNameTheAccessor) {
