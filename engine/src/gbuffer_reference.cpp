@@ -104,6 +104,25 @@ CameraRay cameraRayReference(const View& view, glm::dvec2 pixel) {
   return {origin, glm::normalize(unproject(0.5) - origin)};
 }
 
+glm::dvec3 perturbedNormal(glm::dvec3 normal, const glm::dvec3 corners[3], const glm::dvec2 uvs[3],
+                           glm::dvec3 mapped) {
+  const glm::dvec3 e1 = corners[1] - corners[0], e2 = corners[2] - corners[0];
+  const glm::dvec2 d1 = uvs[1] - uvs[0], d2 = uvs[2] - uvs[0];
+  const double det = d1.x * d2.y - d2.x * d1.y;
+  if (!(std::abs(det) > 0.0)) return normal;
+  const glm::dvec3 dpdu = (e1 * d2.y - e2 * d1.y) / det, dpdv = (e2 * d1.x - e1 * d2.x) / det;
+  const glm::dvec3 t = dpdu - normal * glm::dot(normal, dpdu);
+  const double length = glm::length(t);
+  if (!(length > 1e-6 * glm::length(dpdu))) return normal;
+  const glm::dvec3 tangent = t / length;
+  // glTF's v runs down the image and its maps' +Y is up: B = n x T points against dp/dv where
+  // the coordinates are laid out as usual (dp/du x dp/dv opposite n), and is negated where they
+  // are mirrored.
+  const double handedness = glm::dot(glm::cross(dpdu, dpdv), normal) < 0.0 ? 1.0 : -1.0;
+  const glm::dvec3 bitangent = glm::cross(normal, tangent) * handedness;
+  return glm::normalize(tangent * mapped.x + bitangent * mapped.y + normal * mapped.z);
+}
+
 GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 barycentrics,
                         glm::dvec3 rayDir, BackFaces backFaces) {
   uint32_t idx[3];
@@ -121,19 +140,32 @@ GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 baryce
   GBufferSample s;
   s.depth = 0.0f;
   s.normal = glm::normalize(nrm[0] * w0 + nrm[1] * bc.x + nrm[2] * bc.y);
+  const Material& m = scene.materials[scene.triangleMaterial[triangle]];
+  // KHR_texture_transform, as gbuffer_resolve.comp applies it.
+  const auto transform = [](const TextureTransform& t, glm::dvec2 coordinates) {
+    const glm::dvec3 uv1(coordinates, 1.0);
+    return glm::dvec2(glm::dot(t.rowU(), uv1), glm::dot(t.rowV(), uv1));
+  };
+  const auto transformed = [&](const TextureTransform& t) { return transform(t, texcoord); };
+  // The normal map perturbs the front's normal; a back face then shows its negation.
+  if (m.normalTexture >= 0) {
+    const glm::dvec4 texel =
+        sampleBilinear(scene.textures[m.normalTexture], transformed(m.normalTransform), false);
+    const glm::dvec3 mapped = glm::dvec3(texel) * 2.0 - 1.0;
+    const glm::dvec2 mappedUvs[3] = {transform(m.normalTransform, uv[0]),
+                                     transform(m.normalTransform, uv[1]),
+                                     transform(m.normalTransform, uv[2])};
+    s.normal =
+        perturbedNormal(s.normal, pos, mappedUvs,
+                        glm::dvec3(mapped.x * m.normalScale, mapped.y * m.normalScale, mapped.z));
+  }
   const bool back = glm::dot(glm::cross(pos[1] - pos[0], pos[2] - pos[0]), rayDir) > 0.0;
   if (back) s.normal = -s.normal;
 
-  const Material& m = scene.materials[scene.triangleMaterial[triangle]];
   if (back && backFaces == BackFaces::PerMaterial && !m.doubleSided) {
     s.roughness = 1.0;  // black: diffuse, F0 and F90 stay 0
     return s;
   }
-  // KHR_texture_transform, as gbuffer_resolve.comp applies it.
-  const auto transformed = [&](const TextureTransform& t) {
-    const glm::dvec3 uv1(texcoord, 1.0);
-    return glm::dvec2(glm::dot(t.rowU(), uv1), glm::dot(t.rowV(), uv1));
-  };
   glm::dvec4 base(m.baseColorFactor);
   if (m.baseColorTexture >= 0)
     base *=

@@ -15,6 +15,15 @@ bool inUnitRange(double v) {
   return v >= 0.0 && v <= 1.0;
 }
 
+// A normalTexture read as the textureInfo it extends (its scale is read apart).
+tinygltf::TextureInfo asTextureInfo(const tinygltf::NormalTextureInfo& normal) {
+  tinygltf::TextureInfo info;
+  info.index = normal.index;
+  info.texCoord = normal.texCoord;
+  info.extensions = normal.extensions;
+  return info;
+}
+
 }  // namespace
 
 // Maps a glTF texture to the Scene::textures index of its source image.
@@ -124,22 +133,36 @@ void SceneBuilder::convertMaterials() {
     out.baseColorTransform = textureTransform(pbr.baseColorTexture, where + " baseColorTexture");
     out.metallicRoughnessTransform =
         textureTransform(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
-    // Vertices carry one texture coordinate set: the one the material's textures sample. Where
-    // its two textures sample different sets, the base colour (what the bounce takes its colour
-    // from) keeps its set and the metallic-roughness texture is skipped, its factors standing for
-    // the whole surface.
+    const tinygltf::TextureInfo normalInfo = asTextureInfo(in.normalTexture);
+    out.normalTexture = textureImage(normalInfo, where + " normalTexture");
+    out.normalTransform = textureTransform(normalInfo, where + " normalTexture");
+    if (!std::isfinite(in.normalTexture.scale))
+      fail(where + ": normalTexture scale must be a finite number");
+    out.normalScale = static_cast<float>(in.normalTexture.scale);
+    // Vertices carry one texture coordinate set: the one the material's textures sample, the
+    // first of base colour (what the bounce takes its colour from), metallic-roughness, normal
+    // map that has a texture. A texture on another set is skipped (the factors stand for the
+    // surface; without its normal map the surface is smooth).
     const int baseSet = textureCoordinateSet(pbr.baseColorTexture, where + " baseColorTexture");
     const int roughSet =
         textureCoordinateSet(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
-    if (baseSet >= 0 && roughSet >= 0 && baseSet != roughSet) {
-      scene_.warnings.push_back(located(
-          where + " metallicRoughnessTexture: skipped (it samples TEXCOORD_" +
-          std::to_string(roughSet) + ", the base colour TEXCOORD_" + std::to_string(baseSet) +
-          "; one set per material is read: its factors stand for the surface)"));
-      out.metallicRoughnessTexture = -1;
-      out.metallicRoughnessTransform = TextureTransform{};
-    }
-    materialCoordinateSets_.push_back(baseSet >= 0 ? baseSet : std::max(roughSet, 0));
+    const int normalSet = textureCoordinateSet(normalInfo, where + " normalTexture");
+    const int set = baseSet >= 0 ? baseSet : roughSet >= 0 ? roughSet : std::max(normalSet, 0);
+    const auto keepOnSet = [&](int sampled, const char* what, int& texture,
+                               TextureTransform& transform) {
+      if (sampled < 0 || sampled == set) return;
+      scene_.warnings.push_back(located(where + " " + what + ": skipped (it samples TEXCOORD_" +
+                                        std::to_string(sampled) +
+                                        ", the material's other "
+                                        "textures TEXCOORD_" +
+                                        std::to_string(set) + "; one set per material is read)"));
+      texture = -1;
+      transform = TextureTransform{};
+    };
+    keepOnSet(roughSet, "metallicRoughnessTexture", out.metallicRoughnessTexture,
+              out.metallicRoughnessTransform);
+    keepOnSet(normalSet, "normalTexture", out.normalTexture, out.normalTransform);
+    materialCoordinateSets_.push_back(set);
     out.doubleSided = in.doubleSided;
     convertSpecular(in, where, out);
     scene_.materials.push_back(std::move(out));

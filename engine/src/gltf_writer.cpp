@@ -61,7 +61,8 @@ bool hasSpecular(const Material& m) {
 // Whether a material's textures carry a KHR_texture_transform (written only then).
 bool hasTextureTransform(const Material& m) {
   return (m.baseColorTexture >= 0 && !m.baseColorTransform.identity()) ||
-         (m.metallicRoughnessTexture >= 0 && !m.metallicRoughnessTransform.identity());
+         (m.metallicRoughnessTexture >= 0 && !m.metallicRoughnessTransform.identity()) ||
+         (m.normalTexture >= 0 && !m.normalTransform.identity());
 }
 
 // A textureInfo: the texture's index, and its transform when it has one.
@@ -176,7 +177,8 @@ class GltfBuilder {
       }
     }
     for (const Material& material : scene_.materials) {
-      for (int texture : {material.baseColorTexture, material.metallicRoughnessTexture}) {
+      for (int texture :
+           {material.baseColorTexture, material.metallicRoughnessTexture, material.normalTexture}) {
         if (texture < -1 || texture >= static_cast<int>(scene_.textures.size())) {
           fail("material '" + material.name + "' uses texture " + std::to_string(texture) +
                " which does not exist");
@@ -327,6 +329,10 @@ class GltfBuilder {
         pbr["metallicRoughnessTexture"] =
             textureInfo(material.metallicRoughnessTexture, material.metallicRoughnessTransform);
       json out = {{"pbrMetallicRoughness", std::move(pbr)}, {"doubleSided", material.doubleSided}};
+      if (material.normalTexture >= 0) {
+        out["normalTexture"] = textureInfo(material.normalTexture, material.normalTransform);
+        out["normalTexture"]["scale"] = tidy(material.normalScale);
+      }
       if (hasSpecular(material))
         out["extensions"] = {
             {"KHR_materials_specular",

@@ -103,8 +103,8 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
     vertices[i].normalV = glm::vec4(scene.normals[i], uv.y);
   }
 
-  // Each texture gets a layer in the array of the role that uses it (sRGB base colour, or
-  // linear metallic-roughness); a texture used in both roles is stored in both.
+  // Each texture gets a layer in the array of the role that uses it (sRGB base colour, or linear
+  // data: metallic-roughness and normal maps); a texture used in both roles is stored in both.
   std::vector<int> baseLayers, dataLayers;
   auto layerOf = [](std::vector<int>& layers, int texture) {
     if (texture < 0) return -1;
@@ -128,7 +128,11 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
     g.baseColorUvV = glm::vec4(glm::vec3(m.baseColorTransform.rowV()), 0.0f);
     g.metallicRoughnessUvU = glm::vec4(glm::vec3(m.metallicRoughnessTransform.rowU()), 0.0f);
     g.metallicRoughnessUvV = glm::vec4(glm::vec3(m.metallicRoughnessTransform.rowV()), 0.0f);
-    for (int t : {m.baseColorTexture, m.metallicRoughnessTexture})
+    g.normalLayer = layerOf(dataLayers, m.normalTexture);
+    g.normalScale = m.normalScale;
+    g.normalUvU = glm::vec4(glm::vec3(m.normalTransform.rowU()), 0.0f);
+    g.normalUvV = glm::vec4(glm::vec3(m.normalTransform.rowV()), 0.0f);
+    for (int t : {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture})
       if (t >= 0) largest = std::max({largest, scene.textures[t].width, scene.textures[t].height});
     materials.push_back(g);
   }

@@ -63,6 +63,14 @@ CacheKey& CacheKey::add(const engine::Scene& scene) {
             .add(transforms[i]->offset)
             .add(transforms[i]->rotation)
             .add(transforms[i]->scale);
+    // Only with a normal map, so that the keys of scenes without one stay what they were.
+    if (m.normalTexture >= 0)
+      add(std::string("normalTexture"))
+          .add(m.normalTexture)
+          .add(m.normalScale)
+          .add(m.normalTransform.offset)
+          .add(m.normalTransform.rotation)
+          .add(m.normalTransform.scale);
   }
   add(scene.textures.size());
   for (const engine::Texture& t : scene.textures) add(t.width).add(t.height).addVector(t.rgba8);

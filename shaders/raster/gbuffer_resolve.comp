@@ -47,6 +47,24 @@ vec2 transformUv(vec3 u, vec3 v, vec2 uv) {
 }
 vec2 transformGradient(vec3 u, vec3 v, vec2 d) { return vec2(dot(u.xy, d), dot(v.xy, d)); }
 
+// A tangent-space normal map's normal, as engine::perturbedNormal (gbuffer_reference.h)
+// derives it: the triangle's own frame, T along dp/du made orthogonal to n, B = n x T (the
+// image's up, against dp/dv: glTF's v runs down), negated where the coordinates are mirrored; n
+// itself where they give no frame.
+vec3 perturbedNormal(vec3 n, vec3 a, vec3 b, vec3 c, vec2 uvA, vec2 uvB, vec2 uvC, vec3 mapped) {
+  vec3 e1 = b - a, e2 = c - a;
+  vec2 d1 = uvB - uvA, d2 = uvC - uvA;
+  float det = d1.x * d2.y - d2.x * d1.y;
+  if (!(abs(det) > 0.0)) return n;
+  vec3 dpdu = (e1 * d2.y - e2 * d1.y) / det, dpdv = (e2 * d1.x - e1 * d2.x) / det;
+  vec3 t = dpdu - n * dot(n, dpdu);
+  float len = length(t);
+  if (!(len > 1e-6 * length(dpdu))) return n;
+  vec3 tangent = t / len;
+  vec3 bitangent = cross(n, tangent) * (dot(cross(dpdu, dpdv), n) < 0.0 ? 1.0 : -1.0);
+  return normalize(tangent * mapped.x + bitangent * mapped.y + n * mapped.z);
+}
+
 vec2 rayBarycentrics(vec2 pixel, vec3 a, vec3 b, vec3 c) {
   vec3 origin, dir;
   cameraRay(pc.invViewProj, pixelToNdc(pixel, pc.viewport), origin, dir);
@@ -88,12 +106,24 @@ void main() {
   vec2 uvDy = (bcY.x - bc.x) * duvA + (bcY.y - bc.y) * duvB;
 
   vec3 normal = normalize(nA.xyz * (1.0 - bc.x - bc.y) + nB.xyz * bc.x + nC.xyz * bc.y);
+  uint material = triangleMaterial[tri];
+  // The normal map perturbs the front's normal (a back face then shows its negation).
+  int normalLayer = materials[material].normalLayer;
+  if (normalLayer >= 0) {
+    vec3 u = materials[material].normalUvU.xyz, v = materials[material].normalUvV.xyz;
+    vec3 mapped = textureGrad(metallicRoughnessTextures,
+                              vec3(transformUv(u, v, uv), float(normalLayer)),
+                              transformGradient(u, v, uvDx), transformGradient(u, v, uvDy))
+                      .rgb * 2.0 - 1.0;
+    mapped.xy *= materials[material].normalScale;
+    normal = perturbedNormal(normal, a, b, c, transformUv(u, v, uvA), transformUv(u, v, uvB),
+                             transformUv(u, v, uvC), mapped);
+  }
   // Two-sided shading: a surface seen from behind is lit as its front, so flip the normal
   // toward the viewer using the geometric normal (interpolated normals can disagree).
   bool back = dot(cross(b - a, c - a), dir) > 0.0;
   if (back) normal = -normal;
 
-  uint material = triangleMaterial[tri];
   // In a light's view the back of a single-sided surface is no surface (glTF doubleSided false):
   // it keeps its depth, so it shadows, and reflects nothing.
   if (back && pc.backFaces == 1u && materials[material].doubleSided == 0u) {

@@ -31,14 +31,18 @@ struct SceneMaterial {
   // glTF doubleSided: 1 = both faces reflect light; 0 = the back face reflects none in a light's
   // view (GBufferResolvePush::lightView), though it still blocks the light.
   uint doubleSided;
+  // Tangent-space normal map (engine::Material::normalTexture): its layer in the linear
+  // (metallic-roughness) array, -1 = none; the scale of its x and y; its transform's rows.
+  int normalLayer;
+  float normalScale;
   uint pad0;
-  uint pad1;
-  uint pad2;
+  vec4 normalUvU;
+  vec4 normalUvV;
 };
 
 SHARED_END
 
 SHARED_ASSERT_SIZE(SceneVertex, 32);
-SHARED_ASSERT_SIZE(SceneMaterial, 128);
+SHARED_ASSERT_SIZE(SceneMaterial, 160);
 SHARED_ASSERT_OFFSET(SceneMaterial, metallic, 32);
 #endif

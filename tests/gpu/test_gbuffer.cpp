@@ -260,6 +260,49 @@ TEST_F(GBufferTest, BackFacesTurnTheirNormalToTheViewer) {
   EXPECT_EQ(c.failures, 0u) << "first: " << c.firstFailure;
 }
 
+// A constant normal map on the quad, which faces +Z with u along +X and v down the image (-Y):
+// its tangent frame is T = +X, B = +Y (the image's up), so the texel's (x, y, z) is the normal
+// (x, y, z). With u mirrored (running along -X) T = -X while B stays up: (-x, y, z). The light's
+// view (the RSM's resolve) shows the same normals. GPU and twin against the texel's decoded
+// value, within the normal's storage tolerance (a constant 8-bit texture filters to its code).
+TEST_F(GBufferTest, NormalMapTiltsTheNormalInTheTrianglesFrame) {
+  const glm::u8vec4 kWhite(255, 255, 255, 255);
+  const glm::u8vec4 kNormal(200, 90, 230, 255);
+  engine::Material m;
+  m.normalScale = 0.8f;
+  const glm::dvec3 mapped = glm::dvec3(kNormal.r, kNormal.g, kNormal.b) / 255.0 * 2.0 - 1.0;
+  const glm::dvec3 scaled(mapped.x * m.normalScale, mapped.y * m.normalScale, mapped.z);
+  for (const bool mirrored : {false, true}) {
+    Scene scene = texturedQuad(makeTexture("base", 1, [&](int, int) { return kWhite; }),
+                               makeTexture("mr", 1, [&](int, int) { return kWhite; }), m,
+                               mirrored ? 1.0f : 0.0f, mirrored ? 0.0f : 1.0f);
+    if (mirrored)  // u back to the glTF layout's v: only u runs the other way
+      for (glm::vec2& uv : scene.uvs) uv.y = 1.0f - uv.y;
+    scene.textures.push_back(makeTexture("normal", 4, [&](int, int) { return kNormal; }));
+    scene.materials[0].normalTexture = 2;
+    const glm::dvec3 expected =
+        glm::normalize(glm::dvec3(mirrored ? -scaled.x : scaled.x, scaled.y, scaled.z));
+    engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
+    for (const engine::BackFaces mode :
+         {engine::BackFaces::AsFront, engine::BackFaces::PerMaterial}) {
+      SCOPED_TRACE(std::string(mirrored ? "mirrored u" : "glTF layout") +
+                   (mode == engine::BackFaces::AsFront ? ", camera view" : ", light view"));
+      GpuResolve gpu = resolve(scene, view, mode);
+      GBufferData cpu = engine::resolveGBufferReference(scene, view, gpu.visibility, mode);
+      double gpuError = 0.0, cpuError = 0.0;
+      for (size_t i = 0; i < cpu.samples.size(); ++i) {
+        ASSERT_FALSE(cpu.samples[i].background()) << "the quad fills the view";
+        cpuError = std::max(cpuError, angleBetween(cpu.samples[i].normal, expected));
+        gpuError = std::max(gpuError, angleBetween(gpu.gbuffer.samples[i].normal, expected));
+      }
+      EXPECT_LE(cpuError, 1e-12);
+      EXPECT_LE(gpuError, kNormalTolerance);
+      // The tilt is large: a map that was not applied would miss by 0.5 rad.
+      EXPECT_GT(angleBetween(expected, glm::dvec3(0, 0, 1)), 0.4);
+    }
+  }
+}
+
 TEST_F(GBufferTest, ConstantTexturesMultiplyFactors) {
   const glm::u8vec4 kBase(200, 100, 30, 255);  // sRGB
   const glm::u8vec4 kMr(0, 150, 90, 255);      // G = roughness, B = metallic (linear)

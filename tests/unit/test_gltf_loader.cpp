@@ -456,6 +456,44 @@ TEST(GltfLoader, ReadsAndWritesKhrTextureTransform) {
 // in a buffer file of its own. The vertices carry the set the material's textures sample; where
 // the two textures sample different sets the base colour's is kept and the metallic-roughness
 // texture skipped with a warning; a set the primitive lacks is refused.
+// normalTexture: its image, scale and KHR_texture_transform are read and written back; on
+// another coordinate set than the base colour it is skipped with a warning; a non-finite scale
+// is refused. (What it does to the normals: tests/gpu/test_gbuffer.cpp.)
+TEST(GltfLoader, ReadsAndWritesNormalTextures) {
+  TempDir dir;
+  fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png");
+  json gltf = json::parse(readText(kGltfData / "textured.gltf"));
+  gltf["materials"][0]["normalTexture"] = {
+      {"index", 1},
+      {"scale", 0.75},
+      {"extensions", {{"KHR_texture_transform", {{"scale", {2.0, 2.0}}}}}}};
+  gltf["extensionsUsed"].push_back("KHR_texture_transform");
+  writeText(dir / "normal.gltf", gltf.dump());
+  const engine::Scene scene = engine::loadGltf((dir / "normal.gltf").string());
+  EXPECT_TRUE(scene.warnings.empty());
+  const engine::Material& m = scene.materials[0];
+  EXPECT_EQ(m.normalTexture, m.metallicRoughnessTexture);  // texture 1 in both roles
+  EXPECT_EQ(m.normalScale, 0.75f);
+  EXPECT_EQ(m.normalTransform.scale, glm::vec2(2.0f));
+
+  engine::writeGltf(scene, (dir / "back.gltf").string());
+  const engine::Scene back = engine::loadGltf((dir / "back.gltf").string());
+  EXPECT_EQ(back.materials[0].normalTexture, back.materials[0].metallicRoughnessTexture);
+  EXPECT_EQ(back.materials[0].normalScale, 0.75f);
+  EXPECT_EQ(back.materials[0].normalTransform.scale, glm::vec2(2.0f));
+
+  gltf["materials"][0]["normalTexture"]["texCoord"] = 1;
+  gltf["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] =
+      gltf["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"];
+  writeText(dir / "other_set.gltf", gltf.dump());
+  const engine::Scene other = engine::loadGltf((dir / "other_set.gltf").string());
+  ASSERT_EQ(other.warnings.size(), 1u);
+  EXPECT_NE(other.warnings[0].find("material 0 normalTexture: skipped (it samples TEXCOORD_1"),
+            std::string::npos)
+      << other.warnings[0];
+  EXPECT_EQ(other.materials[0].normalTexture, -1);
+}
+
 TEST(GltfLoader, TexturesOnASecondCoordinateSet) {
   TempDir dir;
   fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png");
@@ -499,7 +537,7 @@ TEST(GltfLoader, TexturesOnASecondCoordinateSet) {
   });
   ASSERT_EQ(mixed.warnings.size(), 1u);
   EXPECT_NE(mixed.warnings[0].find("material 0 metallicRoughnessTexture: skipped (it samples "
-                                   "TEXCOORD_0, the base colour TEXCOORD_1"),
+                                   "TEXCOORD_0, the material's other textures TEXCOORD_1"),
             std::string::npos)
       << mixed.warnings[0];
   expectSecondSet(mixed);

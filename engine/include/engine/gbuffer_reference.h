@@ -70,12 +70,24 @@ struct CameraRay {
 CameraRay cameraRayReference(const View& view, glm::dvec2 pixel);
 
 // The surface of triangle `triangle` at barycentrics (u, v) (weights of its vertices 1 and 2)
-// seen along `rayDir`, as the resolve decodes it: interpolated normal flipped to face the ray's
-// origin by the geometric normal, material factors times bilinear textures. depth is 0 (not a
+// seen along `rayDir`, as the resolve decodes it: interpolated normal, perturbed by the material's
+// normal map, flipped to face the ray's origin by the geometric normal, material factors times
+// bilinear textures. depth is 0 (not a
 // background sample). The CPU references (path tracer, VPL gather) shade their hits with it:
 // camera hits with AsFront, the surfaces that bounce the light with PerMaterial (BackFaces).
 GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 barycentrics,
                         glm::dvec3 rayDir, BackFaces backFaces = BackFaces::AsFront);
+
+// A tangent-space normal map's normal (gbuffer_resolve.comp does the same in fp32). `normal` is
+// the interpolated front normal, `corners` the triangle and `uvs` its corners' (transformed)
+// texture coordinates, `mapped` the map's texel decoded to [-1, 1] with x and y scaled. The
+// tangent frame is the triangle's, from the corners and their coordinates: T along dp/du made
+// orthogonal to `normal`, and B = normal x T, which points up the image (against dp/dv: glTF's v
+// runs down, and its maps' +Y is up), negated where the coordinates are mirrored (dp/du x dp/dv
+// along `normal`). Returns `normal` where the coordinates give no frame (a triangle without
+// texture coordinates, or one degenerate in them).
+glm::dvec3 perturbedNormal(glm::dvec3 normal, const glm::dvec3 corners[3], const glm::dvec2 uvs[3],
+                           glm::dvec3 mapped);
 
 // sRGB transfer function inverse (IEC 61966-2-1), encoded [0, 1] -> linear, in double.
 double srgbToLinear(double encoded);

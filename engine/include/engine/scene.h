@@ -54,6 +54,12 @@ struct Material {
   int metallicRoughnessTexture = -1;    // glTF packing: roughness in G, metallic in B
   TextureTransform baseColorTransform;  // KHR_texture_transform of each texture
   TextureTransform metallicRoughnessTransform;
+  // Tangent-space normal map (glTF normalTexture): RGB = (x, y, z) * 0.5 + 0.5, x and y scaled by
+  // normalScale. The tangent frame is the triangle's own, from its texture coordinates (the
+  // file's TANGENT attribute is not read): engine/gbuffer_reference.h, perturbedNormal.
+  int normalTexture = -1;
+  float normalScale = 1.0f;
+  TextureTransform normalTransform;
   // KHR_materials_specular: a dielectric's specular reflection, F0 = min(0.04 x colour, 1) x
   // strength and F90 = strength (Schlick); metals keep F0 = base colour and F90 = 1. Strength 0
   // makes the dielectric purely diffuse. Its textures are not supported (the factors are used).
@@ -104,8 +110,8 @@ struct Scene {
   // are generated as area-weighted averages of the face normals sharing a vertex position.
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
-  std::vector<glm::vec2> uvs;  // the set the material samples (TEXCOORD_n); (0,0) without it
-  std::vector<uint32_t> indices;           // 3 per triangle, counter-clockwise front faces
+  std::vector<glm::vec2> uvs;     // the set the material samples (TEXCOORD_n); (0,0) without it
+  std::vector<uint32_t> indices;  // 3 per triangle, counter-clockwise front faces
   std::vector<uint32_t> triangleMaterial;  // one material index per triangle
 
   std::vector<Material> materials;  // never empty: loaders add a default material when needed
