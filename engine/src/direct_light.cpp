@@ -76,7 +76,8 @@ DirectLighting::DirectLighting(Context& ctx, const Scene& scene,
                {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                 VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                 VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                sizeof(gpu::DirectLightPush)) {
   if (settings.shadowResolution < 16 || settings.shadowResolution > 4096)
     throw Error("shadow resolution " + std::to_string(settings.shadowResolution) +
@@ -114,13 +115,13 @@ void DirectLighting::record(VkCommandBuffer cmd, const SceneGpu& scene, Rasteriz
   ProfileScope scope(profiler, cmd, "direct light");
   gpu::DirectLightPush push{
       view.invViewProj, {g.width, g.height}, static_cast<uint32_t>(setup_.lights.size()), res};
-  program_.dispatch(cmd,
-                    {Binding::uniform(lights_), Binding::uniform(views_),
-                     Binding::storage(shadowMaps_), Binding::storageImage(g.depth),
-                     Binding::storageImage(g.normal), Binding::storageImage(g.diffuse),
-                     Binding::storageImage(g.specular), Binding::storageImage(radiance)},
-                    push, groupCount(g.width, DIRECT_GROUP_X),
-                    groupCount(g.height, DIRECT_GROUP_Y));
+  program_.dispatch(
+      cmd,
+      {Binding::uniform(lights_), Binding::uniform(views_), Binding::storage(shadowMaps_),
+       Binding::storageImage(g.depth), Binding::storageImage(g.normal),
+       Binding::storageImage(g.diffuse), Binding::storageImage(g.specular),
+       Binding::storageImage(radiance), Binding::storageImage(g.emission)},
+      push, groupCount(g.width, DIRECT_GROUP_X), groupCount(g.height, DIRECT_GROUP_Y));
   computeBarrier(cmd);
 }
 

@@ -270,7 +270,7 @@ DirectLightReference directLightReference(const GBufferData& gbuffer, const View
       const double vError = glm::length(near.error + mid.error) / glm::length(dir) + fp32Gamma(6);
 
       Shading centre = shade(lighting, s, receiver.p, v);
-      out.radiance[i] = centre.radiance;
+      out.radiance[i] = s.emission + centre.radiance;
       bool ambiguous = centre.ambiguous;
       // Where the GPU may have put the receiver and the view vector: each position axis and
       // each tangent direction of v, both ways. Their changes add up to a first-order bound of

@@ -26,7 +26,8 @@ GBuffer createGBuffer(Context& ctx, uint32_t width, uint32_t height) {
   g.normal = storageImage(ctx, width, height, VK_FORMAT_R16G16_SNORM);
   g.diffuse = storageImage(ctx, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
   g.specular = storageImage(ctx, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
-  for (Image* image : {&g.depth, &g.normal, &g.diffuse, &g.specular})
+  g.emission = storageImage(ctx, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
+  for (Image* image : {&g.depth, &g.normal, &g.diffuse, &g.specular, &g.emission})
     initialLayout(ctx, *image, VK_IMAGE_LAYOUT_GENERAL);
   return g;
 }
@@ -38,7 +39,7 @@ GBufferResolve::GBufferResolve(Context& ctx)
                 VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                 VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                 VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                sizeof(gpu::GBufferResolvePush)) {}
 
 void GBufferResolve::record(VkCommandBuffer cmd, const SceneGpu& scene, const Buffer& visibility,
@@ -47,16 +48,16 @@ void GBufferResolve::record(VkCommandBuffer cmd, const SceneGpu& scene, const Bu
   ProfileScope scope(profiler, cmd, "gbuffer resolve");
   gpu::GBufferResolvePush push{
       view.invViewProj, {g.width, g.height}, static_cast<uint32_t>(backFaces), 0};
-  program_.dispatch(cmd,
-                    {Binding::storage(visibility), Binding::storage(scene.vertices),
-                     Binding::storage(scene.indices), Binding::storage(scene.triangleMaterials),
-                     Binding::storage(scene.materials),
-                     Binding::sampled(scene.baseColorTextures, scene.sampler.handle()),
-                     Binding::sampled(scene.dataTextures, scene.sampler.handle()),
-                     Binding::storageImage(g.depth), Binding::storageImage(g.normal),
-                     Binding::storageImage(g.diffuse), Binding::storageImage(g.specular)},
-                    push, groupCount(g.width, GBUFFER_GROUP_X),
-                    groupCount(g.height, GBUFFER_GROUP_Y));
+  program_.dispatch(
+      cmd,
+      {Binding::storage(visibility), Binding::storage(scene.vertices),
+       Binding::storage(scene.indices), Binding::storage(scene.triangleMaterials),
+       Binding::storage(scene.materials),
+       Binding::sampled(scene.baseColorTextures, scene.sampler.handle()),
+       Binding::sampled(scene.dataTextures, scene.sampler.handle()), Binding::storageImage(g.depth),
+       Binding::storageImage(g.normal), Binding::storageImage(g.diffuse),
+       Binding::storageImage(g.specular), Binding::storageImage(g.emission)},
+      push, groupCount(g.width, GBUFFER_GROUP_X), groupCount(g.height, GBUFFER_GROUP_Y));
   computeBarrier(cmd);
 }
 

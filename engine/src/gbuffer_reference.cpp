@@ -163,9 +163,13 @@ GBufferSample surfaceAt(const Scene& scene, uint32_t triangle, glm::dvec2 baryce
   if (back) s.normal = -s.normal;
 
   if (back && backFaces == BackFaces::PerMaterial && !m.doubleSided) {
-    s.roughness = 1.0;  // black: diffuse, F0 and F90 stay 0
+    s.roughness = 1.0;  // black: diffuse, F0, F90 and emission stay 0
     return s;
   }
+  s.emission = glm::dvec3(m.emissiveFactor);
+  if (m.emissiveTexture >= 0)
+    s.emission *= glm::dvec3(
+        sampleBilinear(scene.textures[m.emissiveTexture], transformed(m.emissiveTransform), true));
   glm::dvec4 base(m.baseColorFactor);
   if (m.baseColorTexture >= 0)
     base *=
@@ -212,10 +216,11 @@ GBufferData resolveGBufferReference(const Scene& scene, const View& view,
 
 GBufferData decodeGBuffer(uint32_t width, uint32_t height, std::span<const std::byte> depth,
                           std::span<const std::byte> normal, std::span<const std::byte> diffuse,
-                          std::span<const std::byte> specular) {
+                          std::span<const std::byte> specular,
+                          std::span<const std::byte> emission) {
   const size_t texels = size_t{width} * height;
   if (depth.size() != texels * 4 || normal.size() != texels * 4 || diffuse.size() != texels * 8 ||
-      specular.size() != texels * 8)
+      specular.size() != texels * 8 || (!emission.empty() && emission.size() != texels * 8))
     throw Error("decodeGBuffer: image sizes do not match " + std::to_string(width) + "x" +
                 std::to_string(height));
   GBufferData g;
@@ -230,6 +235,7 @@ GBufferData decodeGBuffer(uint32_t width, uint32_t height, std::span<const std::
     s.roughness = d.w;
     s.f0 = glm::dvec3(f);
     s.f90 = f.w;
+    if (!emission.empty()) s.emission = glm::dvec3(halfsToDouble(emission, i));
     // The resolve stores a zero normal for background texels; decoding it would invent +Z.
     if (!s.background())
       s.normal = octDecode(glm::dvec2(decodeSnorm16(loadTexel<int16_t>(normal, 2 * i)),
@@ -243,7 +249,8 @@ GBufferData readbackGBuffer(Context& ctx, GBuffer& gbuffer) {
   auto normal = gbuffer.normal.readback(ctx);
   auto diffuse = gbuffer.diffuse.readback(ctx);
   auto specular = gbuffer.specular.readback(ctx);
-  return decodeGBuffer(gbuffer.width, gbuffer.height, depth, normal, diffuse, specular);
+  auto emission = gbuffer.emission.readback(ctx);
+  return decodeGBuffer(gbuffer.width, gbuffer.height, depth, normal, diffuse, specular, emission);
 }
 
 }  // namespace engine

@@ -110,6 +110,32 @@ void SceneBuilder::convertSpecular(const tinygltf::Material& in, const std::stri
   }
 }
 
+// glTF emission: emissiveFactor (3 values in [0, 1]) times KHR_materials_emissive_strength's
+// emissiveStrength (>= 0), and the emissive texture (sRGB, on the material's coordinate set).
+void SceneBuilder::convertEmission(const tinygltf::Material& in, const std::string& where,
+                                   Material& out) const {
+  if (!in.emissiveFactor.empty()) {
+    if (in.emissiveFactor.size() != 3) fail(where + ": emissiveFactor must have 3 values");
+    for (int c = 0; c < 3; ++c) {
+      const double v = in.emissiveFactor[static_cast<size_t>(c)];
+      if (!inUnitRange(v)) fail(where + ": emissiveFactor values must lie in [0, 1]");
+      out.emissiveFactor[c] = static_cast<float>(v);
+    }
+  }
+  const auto ext = in.extensions.find("KHR_materials_emissive_strength");
+  if (ext != in.extensions.end() && ext->second.IsObject() && ext->second.Has("emissiveStrength")) {
+    const tinygltf::Value& s = ext->second.Get("emissiveStrength");
+    const double strength = s.IsNumber() ? s.GetNumberAsDouble() : -1.0;
+    if (!(strength >= 0.0) || !std::isfinite(strength))
+      fail(where +
+           ": KHR_materials_emissive_strength emissiveStrength must be a finite number "
+           ">= 0");
+    out.emissiveFactor *= static_cast<float>(strength);
+  }
+  out.emissiveTexture = textureImage(in.emissiveTexture, where + " emissiveTexture");
+  out.emissiveTransform = textureTransform(in.emissiveTexture, where + " emissiveTexture");
+}
+
 void SceneBuilder::convertMaterials() {
   for (size_t m = 0; m < model_.materials.size(); ++m) {
     const tinygltf::Material& in = model_.materials[m];
@@ -147,7 +173,11 @@ void SceneBuilder::convertMaterials() {
     const int roughSet =
         textureCoordinateSet(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
     const int normalSet = textureCoordinateSet(normalInfo, where + " normalTexture");
-    const int set = baseSet >= 0 ? baseSet : roughSet >= 0 ? roughSet : std::max(normalSet, 0);
+    const int emissiveSet = textureCoordinateSet(in.emissiveTexture, where + " emissiveTexture");
+    const int set = baseSet >= 0     ? baseSet
+                    : roughSet >= 0  ? roughSet
+                    : normalSet >= 0 ? normalSet
+                                     : std::max(emissiveSet, 0);
     const auto keepOnSet = [&](int sampled, const char* what, int& texture,
                                TextureTransform& transform) {
       if (sampled < 0 || sampled == set) return;
@@ -162,6 +192,11 @@ void SceneBuilder::convertMaterials() {
     keepOnSet(roughSet, "metallicRoughnessTexture", out.metallicRoughnessTexture,
               out.metallicRoughnessTransform);
     keepOnSet(normalSet, "normalTexture", out.normalTexture, out.normalTransform);
+    convertEmission(in, where, out);
+    // Emission without its texture would glow where the texture is dark: it is left out whole.
+    keepOnSet(emissiveSet, "emissiveTexture (and the emission)", out.emissiveTexture,
+              out.emissiveTransform);
+    if (emissiveSet >= 0 && emissiveSet != set) out.emissiveFactor = glm::vec3(0.0f);
     materialCoordinateSets_.push_back(set);
     out.doubleSided = in.doubleSided;
     convertSpecular(in, where, out);

@@ -179,27 +179,29 @@ Preflight preflight(const std::string& path, const std::string& json) {
     for (const nlohmann::json& name : *required)
       if (name.is_string() && !understoodExtension(name.get<std::string>()))
         throw Error(path + ": requires unsupported extension '" + name.get<std::string>() + "'");
-  // Base-colour images, through materials[].pbrMetallicRoughness.baseColorTexture.index and
-  // textures[].source; references out of range are left to the scene builder to report.
+  // Colour (sRGB) images: base colour and emission, through materials[].pbrMetallicRoughness.
+  // baseColorTexture.index or materials[].emissiveTexture.index and textures[].source;
+  // references out of range are left to the scene builder to report.
   const nlohmann::json images = doc.value("images", nlohmann::json::array());
   const nlohmann::json textures = doc.value("textures", nlohmann::json::array());
   std::vector<bool>& colour = out.colourImages;
   colour.assign(images.is_array() ? images.size() : 0, false);
-  for (const nlohmann::json& m : doc.value("materials", nlohmann::json::array())) {
+  const auto markColour = [&](const nlohmann::json& m, std::initializer_list<const char*> path) {
     const nlohmann::json* t = &m;
-    for (const char* key : {"pbrMetallicRoughness", "baseColorTexture", "index"}) {
-      if (!t->is_object() || !t->contains(key)) {
-        t = nullptr;
-        break;
-      }
+    for (const char* key : path) {
+      if (!t->is_object() || !t->contains(key)) return;
       t = &(*t)[key];
     }
-    if (!t || !t->is_number_unsigned() || !textures.is_array() || *t >= textures.size()) continue;
+    if (!t->is_number_unsigned() || !textures.is_array() || *t >= textures.size()) return;
     const nlohmann::json& texture = textures[t->get<size_t>()];
-    if (!texture.is_object() || !texture.contains("source")) continue;
+    if (!texture.is_object() || !texture.contains("source")) return;
     const nlohmann::json& source = texture["source"];
     if (source.is_number_unsigned() && source.get<size_t>() < colour.size())
       colour[source.get<size_t>()] = true;
+  };
+  for (const nlohmann::json& m : doc.value("materials", nlohmann::json::array())) {
+    markColour(m, {"pbrMetallicRoughness", "baseColorTexture", "index"});
+    markColour(m, {"emissiveTexture", "index"});
   }
   return out;
 }

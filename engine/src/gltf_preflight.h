@@ -17,8 +17,8 @@ namespace engine::gltf_detail {
 // Deeper JSON than any glTF needs (the schema nests about ten levels; extras may add some).
 constexpr size_t kMaxJsonDepth = 256;
 
-// Extensions a file may list as required. Emissive strength only scales emission, which this
-// module ignores anyway (see scene.h); of KHR_materials_specular the factors are read;
+// Extensions a file may list as required. Emissive strength scales the emission (scene.h); of
+// KHR_materials_specular the factors are read;
 // KHR_texture_transform is applied to both textures; KHR_draco_mesh_compression and
 // EXT_meshopt_compression are decoded (gltf_draco.h, gltf_meshopt.h).
 bool understoodExtension(std::string_view name);

@@ -43,6 +43,7 @@ class SceneBuilder : private ModelReader {
   int textureCoordinateSet(const tinygltf::TextureInfo& info, const std::string& where) const;
   void convertMaterials();
   void convertSpecular(const tinygltf::Material& in, const std::string& where, Material& out);
+  void convertEmission(const tinygltf::Material& in, const std::string& where, Material& out) const;
   void convertLights();
   void convertCameras();
 

@@ -58,11 +58,18 @@ bool hasSpecular(const Material& m) {
   return m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f);
 }
 
+// The largest channel of a material's emission: above 1, what KHR_materials_emissive_strength
+// carries when it is written.
+float emissiveStrength(const Material& m) {
+  return std::max({m.emissiveFactor.r, m.emissiveFactor.g, m.emissiveFactor.b});
+}
+
 // Whether a material's textures carry a KHR_texture_transform (written only then).
 bool hasTextureTransform(const Material& m) {
   return (m.baseColorTexture >= 0 && !m.baseColorTransform.identity()) ||
          (m.metallicRoughnessTexture >= 0 && !m.metallicRoughnessTransform.identity()) ||
-         (m.normalTexture >= 0 && !m.normalTransform.identity());
+         (m.normalTexture >= 0 && !m.normalTransform.identity()) ||
+         (m.emissiveTexture >= 0 && !m.emissiveTransform.identity());
 }
 
 // A textureInfo: the texture's index, and its transform when it has one.
@@ -177,8 +184,8 @@ class GltfBuilder {
       }
     }
     for (const Material& material : scene_.materials) {
-      for (int texture :
-           {material.baseColorTexture, material.metallicRoughnessTexture, material.normalTexture}) {
+      for (int texture : {material.baseColorTexture, material.metallicRoughnessTexture,
+                          material.normalTexture, material.emissiveTexture}) {
         if (texture < -1 || texture >= static_cast<int>(scene_.textures.size())) {
           fail("material '" + material.name + "' uses texture " + std::to_string(texture) +
                " which does not exist");
@@ -248,6 +255,9 @@ class GltfBuilder {
     }
     if (std::any_of(scene_.materials.begin(), scene_.materials.end(), hasSpecular))
       gltf["extensionsUsed"].push_back("KHR_materials_specular");
+    if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
+                    [](const Material& m) { return emissiveStrength(m) > 1.0f; }))
+      gltf["extensionsUsed"].push_back("KHR_materials_emissive_strength");
     if (std::any_of(scene_.materials.begin(), scene_.materials.end(), hasTextureTransform))
       gltf["extensionsUsed"].push_back("KHR_texture_transform");
     if (!nodes.empty()) {  // glTF arrays, when present, must not be empty
@@ -333,11 +343,23 @@ class GltfBuilder {
         out["normalTexture"] = textureInfo(material.normalTexture, material.normalTransform);
         out["normalTexture"]["scale"] = tidy(material.normalScale);
       }
+      // glTF's emissiveFactor lies in [0, 1]: a brighter emission is written with its largest
+      // channel as KHR_materials_emissive_strength.
+      const float strength = emissiveStrength(material);
+      if (strength > 0.0f) {
+        const glm::vec3 factor = material.emissiveFactor / std::max(strength, 1.0f);
+        out["emissiveFactor"] = tidyArray({&factor.x, 3});
+        if (material.emissiveTexture >= 0)
+          out["emissiveTexture"] =
+              textureInfo(material.emissiveTexture, material.emissiveTransform);
+      }
       if (hasSpecular(material))
-        out["extensions"] = {
-            {"KHR_materials_specular",
-             {{"specularFactor", tidy(material.specularFactor)},
-              {"specularColorFactor", tidyArray({&material.specularColorFactor.x, 3})}}}};
+        out["extensions"]["KHR_materials_specular"] = {
+            {"specularFactor", tidy(material.specularFactor)},
+            {"specularColorFactor", tidyArray({&material.specularColorFactor.x, 3})}};
+      if (strength > 1.0f)
+        out["extensions"]["KHR_materials_emissive_strength"] = {
+            {"emissiveStrength", tidy(strength)}};
       if (!material.name.empty()) out["name"] = material.name;
       materials.push_back(std::move(out));
     }

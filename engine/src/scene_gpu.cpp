@@ -103,8 +103,9 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
     vertices[i].normalV = glm::vec4(scene.normals[i], uv.y);
   }
 
-  // Each texture gets a layer in the array of the role that uses it (sRGB base colour, or linear
-  // data: metallic-roughness and normal maps); a texture used in both roles is stored in both.
+  // Each texture gets a layer in the array of the role that uses it (sRGB colour: base colour and
+  // emission; linear data: metallic-roughness and normal maps); a texture used in both roles is
+  // stored in both.
   std::vector<int> baseLayers, dataLayers;
   auto layerOf = [](std::vector<int>& layers, int texture) {
     if (texture < 0) return -1;
@@ -132,7 +133,12 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
     g.normalScale = m.normalScale;
     g.normalUvU = glm::vec4(glm::vec3(m.normalTransform.rowU()), 0.0f);
     g.normalUvV = glm::vec4(glm::vec3(m.normalTransform.rowV()), 0.0f);
-    for (int t : {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture})
+    g.emissiveLayer = layerOf(baseLayers, m.emissiveTexture);
+    g.emissive = glm::vec4(m.emissiveFactor, 0.0f);
+    g.emissiveUvU = glm::vec4(glm::vec3(m.emissiveTransform.rowU()), 0.0f);
+    g.emissiveUvV = glm::vec4(glm::vec3(m.emissiveTransform.rowV()), 0.0f);
+    for (int t :
+         {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
       if (t >= 0) largest = std::max({largest, scene.textures[t].width, scene.textures[t].height});
     materials.push_back(g);
   }

@@ -1,6 +1,7 @@
 #version 460
-// Direct radiance toward the camera from every punctual light, with 3x3 PCF shadow maps.
-// Output: linear HDR radiance (W sr^-1 m^-2), background pixels 0.
+// Direct radiance toward the camera from every punctual light, with 3x3 PCF shadow maps, plus the
+// surface's own emission (the G-buffer's emission image). Output: linear HDR radiance
+// (W sr^-1 m^-2), background pixels 0.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 
@@ -20,6 +21,7 @@ layout(binding = 4, rg16_snorm) uniform readonly image2D gNormal;
 layout(binding = 5, rgba16f) uniform readonly image2D gDiffuse;
 layout(binding = 6, rgba16f) uniform readonly image2D gSpecular;
 layout(binding = 7, rgba32f) uniform writeonly image2D outRadiance;
+layout(binding = 8, rgba16f) uniform readonly image2D gEmission;
 layout(push_constant) uniform Push { DirectLightPush pc; };
 
 // Fraction of the 3x3 shadow-map texels around p's projection that see p (1 = lit).
@@ -70,7 +72,7 @@ void main() {
   vec4 diffuseRough = imageLoad(gDiffuse, coord);
   vec4 specular = imageLoad(gSpecular, coord);  // F0, F90
 
-  vec3 radiance = vec3(0.0);
+  vec3 radiance = imageLoad(gEmission, coord).rgb;
   for (uint i = 0u; i < pc.lightCount; ++i) {
     uint type = lights[i].info.x;
     vec3 l;

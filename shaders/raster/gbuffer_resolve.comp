@@ -26,6 +26,7 @@ layout(binding = 7, r32f) uniform writeonly image2D outDepth;
 layout(binding = 8, rg16_snorm) uniform writeonly image2D outNormal;
 layout(binding = 9, rgba16f) uniform writeonly image2D outDiffuse;
 layout(binding = 10, rgba16f) uniform writeonly image2D outSpecular;
+layout(binding = 11, rgba16f) uniform writeonly image2D outEmission;
 layout(push_constant) uniform Push { GBufferResolvePush pc; };
 
 // Barycentrics (u, v) of the ray's hit with the plane of triangle (a, b, c): Moller-Trumbore
@@ -81,6 +82,7 @@ void main() {
     imageStore(outNormal, coord, vec4(0.0));
     imageStore(outDiffuse, coord, vec4(0.0));
     imageStore(outSpecular, coord, vec4(0.0));
+    imageStore(outEmission, coord, vec4(0.0));
     return;
   }
   float depth = uintBitsToFloat(uint(vis >> 32));
@@ -131,6 +133,7 @@ void main() {
     imageStore(outNormal, coord, vec4(octEncode(normal), 0.0, 0.0));
     imageStore(outDiffuse, coord, vec4(0.0, 0.0, 0.0, 1.0));
     imageStore(outSpecular, coord, vec4(0.0));
+    imageStore(outEmission, coord, vec4(0.0));
     return;
   }
   vec4 base = materials[material].baseColorFactor;
@@ -163,4 +166,13 @@ void main() {
   imageStore(outNormal, coord, vec4(octEncode(normal), 0.0, 0.0));
   imageStore(outDiffuse, coord, vec4(diffuse, roughness));
   imageStore(outSpecular, coord, vec4(f0, f90));
+  vec3 emission = materials[material].emissive.rgb;
+  int emissiveLayer = materials[material].emissiveLayer;
+  if (emissiveLayer >= 0) {
+    vec3 u = materials[material].emissiveUvU.xyz, v = materials[material].emissiveUvV.xyz;
+    emission *= textureGrad(baseColorTextures, vec3(transformUv(u, v, uv), float(emissiveLayer)),
+                            transformGradient(u, v, uvDx), transformGradient(u, v, uvDy))
+                    .rgb;
+  }
+  imageStore(outEmission, coord, vec4(emission, 1.0));
 }

@@ -35,14 +35,19 @@ struct SceneMaterial {
   // (metallic-roughness) array, -1 = none; the scale of its x and y; its transform's rows.
   int normalLayer;
   float normalScale;
-  uint pad0;
+  // Emission (engine::Material::emissiveFactor, emissiveTexture): its layer in the sRGB
+  // (base colour) array, -1 = none; rgb the factor, a unused; its transform's rows.
+  int emissiveLayer;
   vec4 normalUvU;
   vec4 normalUvV;
+  vec4 emissive;
+  vec4 emissiveUvU;
+  vec4 emissiveUvV;
 };
 
 SHARED_END
 
 SHARED_ASSERT_SIZE(SceneVertex, 32);
-SHARED_ASSERT_SIZE(SceneMaterial, 160);
+SHARED_ASSERT_SIZE(SceneMaterial, 208);
 SHARED_ASSERT_OFFSET(SceneMaterial, metallic, 32);
 #endif

@@ -225,6 +225,39 @@ TEST_F(DirectLightPlane, SpotLightMatchesPointOnAxisAndIsDarkOutsideCone) {
     }
 }
 
+// glTF emission (engine::Material::emissiveFactor) is added to the reflected light, on the GPU and
+// in the twin: the plane's centre under the sun gains exactly its emitted radiance, within the
+// half-float storage of the G-buffer's emission image (2^-10 relative).
+TEST_F(DirectLightPlane, EmissionIsAddedToTheReflectedLight) {
+  engine::Light sun;
+  sun.type = engine::LightType::Directional;
+  sun.direction = {0.0f, -1.0f, 0.0f};
+  sun.intensity = 3.0f;
+  const engine::DirectLightSettings settings{kShadowResolution, true};
+  const glm::vec3 kEmission(0.5f, 2.0f,
+                            0.25f);  // W sr^-1 m^-2, as KHR_materials_emissive_strength allows
+  for (const bool emitting : {false, true}) {
+    SCOPED_TRACE(emitting ? "emitting" : "not emitting");
+    Scene scene = litPlane(sun);
+    if (emitting)
+      for (engine::Material& m : scene.materials) m.emissiveFactor = kEmission;
+    engine::View view = engine::cameraView(scene.cameras.front(), kPlaneSize, kPlaneSize);
+    GpuFrame gpu = render(scene, view, settings);
+    engine::DirectLightReference cpu = reference(scene, view, settings, gpu);
+    const double reflected = normalIncidenceRadiance(sun.intensity);
+    const size_t centre = size_t{kCentre} * kPlaneSize + kCentre;
+    for (int c = 0; c < 3; ++c) {
+      const double emitted = emitting ? kEmission[c] : 0.0;
+      EXPECT_NEAR(gpu.radiance[centre][c], reflected + emitted,
+                  kAnalyticTolerance * reflected + 0x1p-10 * emitted)
+          << "channel " << c;
+      EXPECT_NEAR(cpu.radiance[centre][c], reflected + emitted,
+                  kAnalyticTolerance * reflected + 0x1p-10 * emitted)
+          << "channel " << c;
+    }
+  }
+}
+
 TEST_F(DirectLightPlane, DirectionalLightAtNormalIncidence) {
   const float kIrradiance = 3.0f;  // W/m^2
   engine::Light sun;

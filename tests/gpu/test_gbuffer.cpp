@@ -47,7 +47,7 @@ double angleBetween(glm::dvec3 a, glm::dvec3 b) {
 struct GpuResolve {
   std::vector<uint64_t> visibility;
   GBufferData gbuffer;            // decoded
-  std::vector<std::byte> raw[4];  // depth, normal, diffuse, specular as read back
+  std::vector<std::byte> raw[5];  // depth, normal, diffuse, specular, emission as read back
 };
 
 class GBufferTest : public testing_gpu::GpuTest {
@@ -70,13 +70,14 @@ class GBufferTest : public testing_gpu::GpuTest {
     out.raw[1] = g.normal.readback(ctx());
     out.raw[2] = g.diffuse.readback(ctx());
     out.raw[3] = g.specular.readback(ctx());
+    out.raw[4] = g.emission.readback(ctx());
     out.gbuffer = engine::decodeGBuffer(view.width, view.height, out.raw[0], out.raw[1], out.raw[2],
-                                        out.raw[3]);
+                                        out.raw[3], out.raw[4]);
     return out;
   }
 };
 
-// Bytes of pixel i in each of the four images are all zero except a depth of exactly 1.
+// Bytes of pixel i in each of the images are all zero except a depth of exactly 1.
 bool rawBackground(const GpuResolve& r, size_t i) {
   float depth;
   std::memcpy(&depth, r.raw[0].data() + 4 * i, 4);
@@ -86,7 +87,7 @@ bool rawBackground(const GpuResolve& r, size_t i) {
                        [](std::byte b) { return b == std::byte{0}; });
   };
   return depth == 1.0f && zero(r.raw[1], 4 * i, 4) && zero(r.raw[2], 8 * i, 8) &&
-         zero(r.raw[3], 8 * i, 8);
+         zero(r.raw[3], 8 * i, 8) && zero(r.raw[4], 8 * i, 8);
 }
 
 struct Comparison {
@@ -300,6 +301,46 @@ TEST_F(GBufferTest, NormalMapTiltsTheNormalInTheTrianglesFrame) {
       // The tilt is large: a map that was not applied would miss by 0.5 rad.
       EXPECT_GT(angleBetween(expected, glm::dvec3(0, 0, 1)), 0.4);
     }
+  }
+}
+
+// glTF emission: factor (with KHR_materials_emissive_strength's scale folded in) times the sRGB
+// emissive texture, in the G-buffer's emission image, GPU and twin; the back of a single-sided
+// material in a light's view emits nothing there either.
+TEST_F(GBufferTest, EmissionIsFactorTimesTexture) {
+  const glm::u8vec4 kWhite(255, 255, 255, 255);
+  const glm::u8vec4 kGlow(200, 100, 30, 255);  // sRGB
+  engine::Material m;
+  m.emissiveFactor = {0.5f, 2.0f, 4.0f};
+  Scene scene = texturedQuad(makeTexture("base", 1, [&](int, int) { return kWhite; }),
+                             makeTexture("mr", 1, [&](int, int) { return kWhite; }), m);
+  scene.textures.push_back(makeTexture("glow", 4, [&](int, int) { return kGlow; }));
+  scene.materials[0].emissiveTexture = 2;
+  engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
+  const GpuResolve resolved = resolve(scene, view);
+  const GBufferData& gpu = resolved.gbuffer;
+  const GBufferData cpu = engine::resolveGBufferReference(scene, view, resolved.visibility);
+  for (int c = 0; c < 3; ++c) {
+    const double expected = m.emissiveFactor[c] * engine::srgbToLinear(kGlow[c] / 255.0);
+    const double tolerance =
+        m.emissiveFactor[c] * halfCodeStep(kGlow[c], true) + kHalfRelative * expected;
+    for (size_t i = 0; i < cpu.samples.size(); ++i) {
+      ASSERT_NEAR(cpu.samples[i].emission[c], expected, 1e-12) << "pixel " << i;
+      ASSERT_NEAR(gpu.samples[i].emission[c], expected, tolerance) << "pixel " << i;
+    }
+  }
+  // From behind, in a light's view, the single-sided quad is no surface: no emission.
+  const glm::mat4 behind =
+      engine::lookAlong({0.0f, 0.0f, -4.5f}, {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f});
+  const engine::View back =
+      engine::makeView(behind, engine::perspectiveVulkan(0.8f, 1.5f, 0.05f, 0.0f), kWidth, kHeight);
+  const GpuResolve light = resolve(scene, back, engine::BackFaces::PerMaterial);
+  const GBufferData lightCpu = engine::resolveGBufferReference(scene, back, light.visibility,
+                                                               engine::BackFaces::PerMaterial);
+  for (size_t i = 0; i < lightCpu.samples.size(); ++i) {
+    ASSERT_FALSE(lightCpu.samples[i].background());
+    ASSERT_EQ(lightCpu.samples[i].emission, glm::dvec3(0.0)) << "pixel " << i;
+    ASSERT_EQ(light.gbuffer.samples[i].emission, glm::dvec3(0.0)) << "pixel " << i;
   }
 }
 

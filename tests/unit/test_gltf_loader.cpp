@@ -494,6 +494,51 @@ TEST(GltfLoader, ReadsAndWritesNormalTextures) {
   EXPECT_EQ(other.materials[0].normalTexture, -1);
 }
 
+// Emission: emissiveFactor times KHR_materials_emissive_strength, the emissive texture and its
+// transform are read and written back (a factor above 1 as the strength); an emissive texture on
+// another coordinate set drops the emission with a warning; a negative strength is refused.
+TEST(GltfLoader, ReadsAndWritesEmission) {
+  TempDir dir;
+  fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png");
+  json gltf = json::parse(readText(kGltfData / "textured.gltf"));
+  json& material = gltf["materials"][0];
+  material["emissiveFactor"] = {0.25, 0.5, 1.0};
+  material["emissiveTexture"] = {{"index", 0}};
+  material["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", 4.0}};
+  gltf["extensionsUsed"].push_back("KHR_materials_emissive_strength");
+  writeText(dir / "emissive.gltf", gltf.dump());
+  const engine::Scene scene = engine::loadGltf((dir / "emissive.gltf").string());
+  EXPECT_TRUE(scene.warnings.empty());
+  EXPECT_EQ(scene.materials[0].emissiveFactor, glm::vec3(1.0f, 2.0f, 4.0f));
+  EXPECT_EQ(scene.materials[0].emissiveTexture, scene.materials[0].baseColorTexture);
+
+  engine::writeGltf(scene, (dir / "back.gltf").string());
+  const json written = json::parse(readText(dir / "back.gltf"));
+  EXPECT_EQ(
+      written["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"],
+      4.0);
+  const engine::Scene back = engine::loadGltf((dir / "back.gltf").string());
+  EXPECT_EQ(back.materials[0].emissiveFactor, glm::vec3(1.0f, 2.0f, 4.0f));
+  EXPECT_EQ(back.materials[0].emissiveTexture, back.materials[0].baseColorTexture);
+
+  material["emissiveTexture"]["texCoord"] = 1;
+  gltf["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] =
+      gltf["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"];
+  writeText(dir / "other_set.gltf", gltf.dump());
+  const engine::Scene other = engine::loadGltf((dir / "other_set.gltf").string());
+  ASSERT_EQ(other.warnings.size(), 1u);
+  EXPECT_NE(other.warnings[0].find("material 0 emissiveTexture (and the emission): skipped"),
+            std::string::npos)
+      << other.warnings[0];
+  EXPECT_EQ(other.materials[0].emissiveFactor, glm::vec3(0.0f));
+  EXPECT_EQ(other.materials[0].emissiveTexture, -1);
+
+  material["emissiveTexture"]["texCoord"] = 0;
+  material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = -1.0;
+  writeText(dir / "negative.gltf", gltf.dump());
+  expectLoadError(dir / "negative.gltf", "emissiveStrength must be a finite number >= 0");
+}
+
 TEST(GltfLoader, TexturesOnASecondCoordinateSet) {
   TempDir dir;
   fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png");

@@ -14,6 +14,7 @@ struct GBuffer {
   Image normal;    // R16G16_SNORM
   Image diffuse;   // R16G16B16A16_SFLOAT
   Image specular;  // R16G16B16A16_SFLOAT
+  Image emission;  // R16G16B16A16_SFLOAT: emitted radiance (glTF emissive), added by the host
   uint32_t width = 0;
   uint32_t height = 0;
 };

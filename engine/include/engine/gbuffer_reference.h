@@ -27,12 +27,13 @@ namespace engine {
 
 // One G-buffer texel, decoded. Background texels (nothing visible) hold depth 1 and zeros.
 struct GBufferSample {
-  float depth = 1.0f;       // Vulkan NDC depth, the visibility buffer's float bits
-  glm::dvec3 normal{0.0};   // world-space unit shading normal, facing the viewer
-  glm::dvec3 diffuse{0.0};  // base colour * (1 - metallic)
-  double roughness = 0.0;   // perceptual, GGX alpha = roughness^2
-  glm::dvec3 f0{0.0};       // mix(0.04 x specular colour x strength, base colour, metallic)
-  double f90 = 0.0;         // Schlick's grazing reflectance: mix(specular strength, 1, metallic)
+  float depth = 1.0f;        // Vulkan NDC depth, the visibility buffer's float bits
+  glm::dvec3 normal{0.0};    // world-space unit shading normal, facing the viewer
+  glm::dvec3 diffuse{0.0};   // base colour * (1 - metallic)
+  double roughness = 0.0;    // perceptual, GGX alpha = roughness^2
+  glm::dvec3 f0{0.0};        // mix(0.04 x specular colour x strength, base colour, metallic)
+  double f90 = 0.0;          // Schlick's grazing reflectance: mix(specular strength, 1, metallic)
+  glm::dvec3 emission{0.0};  // emitted radiance: emissive factor x texture (0 on a black back)
 
   bool background() const { return depth >= 1.0f; }
 };
@@ -51,14 +52,16 @@ GBufferData resolveGBufferReference(const Scene& scene, const View& view,
                                     std::span<const uint64_t> visibility,
                                     BackFaces backFaces = BackFaces::AsFront);
 
-// Decodes the raw bytes of the four G-buffer images (Image::readback, formats of
-// shaders/shared/gbuffer.h). Normals are decoded from RG16_SNORM and the octahedral map in
-// double, so the only difference to the reference left is the storage quantisation.
+// Decodes the raw bytes of the G-buffer images (Image::readback, formats of
+// shaders/shared/gbuffer.h); `emission` may be empty (then 0). Normals are decoded from
+// RG16_SNORM and the octahedral map in double, so the only difference to the reference left is
+// the storage quantisation.
 GBufferData decodeGBuffer(uint32_t width, uint32_t height, std::span<const std::byte> depth,
                           std::span<const std::byte> normal, std::span<const std::byte> diffuse,
-                          std::span<const std::byte> specular);
+                          std::span<const std::byte> specular,
+                          std::span<const std::byte> emission = {});
 
-// Reads the four images back (blocking) and decodes them.
+// Reads the five images back (blocking) and decodes them.
 GBufferData readbackGBuffer(Context& ctx, GBuffer& gbuffer);
 
 // The camera ray through `pixel` (pixel units, (0, 0) the top-left corner of the image) as

@@ -60,6 +60,12 @@ struct Material {
   int normalTexture = -1;
   float normalScale = 1.0f;
   TextureTransform normalTransform;
+  // Emitted radiance (glTF emissive: factor x texture, the factor times
+  // KHR_materials_emissive_strength), W sr^-1 m^-2. It is added to the frame by the host's
+  // direct light and does not bounce (the RSM's flux carries reflected light only).
+  glm::vec3 emissiveFactor{0.0f};
+  int emissiveTexture = -1;  // sRGB, like the base colour
+  TextureTransform emissiveTransform;
   // KHR_materials_specular: a dielectric's specular reflection, F0 = min(0.04 x colour, 1) x
   // strength and F90 = strength (Schlick); metals keep F0 = base colour and F90 = 1. Strength 0
   // makes the dielectric purely diffuse. Its textures are not supported (the factors are used).
