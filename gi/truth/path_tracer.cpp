@@ -468,6 +468,7 @@ PathTraceImage pathTrace(const engine::Scene& scene, const EmbreeScene& rays,
     px.lobes = Lobes(px.x.surface, px.view);
     for (const Tracer& tracer : tracers)
       px.mirrors.push_back(tracer.mirrorsAt(px, settings.mirrorSampling));
+    px.direct = px.x.surface.emission;  // glTF emission, which the host's frame adds too
     for (const gpu::GpuLight& light : lights) {
       const Reflected r = reflectLight(rays, light, px.x, px.view, settings.directShadows);
       px.direct += r.diffuse + r.glossy;

@@ -1,6 +1,7 @@
 // The one-bounce ground truth (issue 5): a CPU path tracer on Embree, independent of the RSM,
 // that renders what the VSGL module approximates, in the same units, BRDF and camera:
-//   direct:  every light, exact shadow rays;
+//   direct:  every light, exact shadow rays, plus the visible surface's emission (glTF emissive,
+//            which does not bounce: engine::Material::emissiveFactor);
 //   diffuse, glossy: light of ONE light (the one the RSM renders) after exactly one bounce,
 //            light -> y -> x -> camera, split by the receiver x's lobe (Lambert or GGX) as the
 //            module's two outputs are. y reflects with its full BRDF (both lobes).

@@ -63,7 +63,15 @@ CacheKey& CacheKey::add(const engine::Scene& scene) {
             .add(transforms[i]->offset)
             .add(transforms[i]->rotation)
             .add(transforms[i]->scale);
-    // Only with a normal map, so that the keys of scenes without one stay what they were.
+    // Only with emission or a normal map, so that the keys of scenes without them stay what they
+    // were.
+    if (m.emissiveFactor != glm::vec3(0.0f))
+      add(std::string("emission"))
+          .add(m.emissiveFactor)
+          .add(m.emissiveTexture)
+          .add(m.emissiveTransform.offset)
+          .add(m.emissiveTransform.rotation)
+          .add(m.emissiveTransform.scale);
     if (m.normalTexture >= 0)
       add(std::string("normalTexture"))
           .add(m.normalTexture)

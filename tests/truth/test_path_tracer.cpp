@@ -115,6 +115,30 @@ TEST(PathTracer, SameImageOnAnyThreadCount) {
   EXPECT_EQ(one.samples, three.samples);
 }
 
+// glTF emission is part of the direct term at the visible point (it does not bounce): the same
+// trace with every material emitting differs in `direct` by exactly the emission, and its
+// diffuse and glossy terms are the same to the bit (one stream per pixel).
+TEST(PathTracer, EmissionIsInTheDirectTermOnly) {
+  Fixture f;
+  truth::PathTraceSettings s;
+  s.relativeError = 0.2;
+  s.maxSamples = 64;
+  const truth::PathTraceImage dark = truth::pathTrace(f.scene, f.rays, f.view, 0, s);
+  const glm::vec3 kEmission(0.25f, 0.5f, 1.0f);
+  for (engine::Material& m : f.scene.materials) m.emissiveFactor = kEmission;
+  const truth::PathTraceImage glowing = truth::pathTrace(f.scene, f.rays, f.view, 0, s);
+  EXPECT_EQ(dark.diffuse, glowing.diffuse);
+  EXPECT_EQ(dark.glossy, glowing.glossy);
+  size_t surface = 0;
+  for (size_t i = 0; i < dark.direct.size(); ++i) {
+    if (dark.samples[i] == 0) continue;  // background
+    ++surface;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(glowing.direct[i][c] - dark.direct[i][c], kEmission[c], 1e-12) << "pixel " << i;
+  }
+  EXPECT_GT(surface, 0u);
+}
+
 // The checker's glossy tiles (alpha 0.08^2) form one plane, y = 0, of half the floor's 2.4 m x
 // 2.4 m, and only their triangles belong to it; the Cornell box keeps its floor (alpha 0.04) and
 // not its glossy wall (0.0625 > kMirrorAlpha); the atrium (alpha >= 0.25) has none. The area is

@@ -61,6 +61,18 @@ TEST(ReferenceCache, KeyChangesWithEveryInput) {
   scene.materials[0].specularColorFactor.g = 0.5f;
   EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), specular);
   scene = truth::makeAnalyticScene(params);
+  scene.materials[0].emissiveFactor.r = 0.5f;  // the direct term carries emission
+  EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), base);
+  scene = truth::makeAnalyticScene(params);
+  scene.textures.push_back(scene.textures.empty() ? engine::Texture{"n", 1, 1, {128, 128, 255, 255}}
+                                                  : scene.textures.front());
+  const uint64_t texture = truth::CacheKey().add(scene).add(view).value();
+  scene.materials[0].normalTexture = static_cast<int>(scene.textures.size()) - 1;
+  const uint64_t normal = truth::CacheKey().add(scene).add(view).value();
+  EXPECT_NE(normal, texture);
+  scene.materials[0].normalScale = 0.5f;
+  EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), normal);
+  scene = truth::makeAnalyticScene(params);
   EXPECT_EQ(truth::CacheKey().add(scene).add(view).value(), base);
   const engine::View wider = engine::cameraView(scene.cameras.front(), 9, 6);
   EXPECT_NE(truth::CacheKey().add(scene).add(wider).value(), base);
