@@ -167,8 +167,9 @@ void SceneBuilder::convertMaterials() {
     out.normalScale = static_cast<float>(in.normalTexture.scale);
     // Vertices carry one texture coordinate set: the one the material's textures sample, the
     // first of base colour (what the bounce takes its colour from), metallic-roughness, normal
-    // map that has a texture. A texture on another set is skipped (the factors stand for the
-    // surface; without its normal map the surface is smooth).
+    // and emissive texture that exists. A texture on another set is skipped (the factors stand for
+    // the surface; without its normal map the surface is smooth; without its emissive texture the
+    // material does not glow).
     const int baseSet = textureCoordinateSet(pbr.baseColorTexture, where + " baseColorTexture");
     const int roughSet =
         textureCoordinateSet(pbr.metallicRoughnessTexture, where + " metallicRoughnessTexture");
@@ -180,23 +181,23 @@ void SceneBuilder::convertMaterials() {
                                      : std::max(emissiveSet, 0);
     const auto keepOnSet = [&](int sampled, const char* what, int& texture,
                                TextureTransform& transform) {
-      if (sampled < 0 || sampled == set) return;
+      if (sampled < 0 || sampled == set) return true;
       scene_.warnings.push_back(located(where + " " + what + ": skipped (it samples TEXCOORD_" +
                                         std::to_string(sampled) +
-                                        ", the material's other "
-                                        "textures TEXCOORD_" +
+                                        ", the material's other textures TEXCOORD_" +
                                         std::to_string(set) + "; one set per material is read)"));
       texture = -1;
       transform = TextureTransform{};
+      return false;
     };
     keepOnSet(roughSet, "metallicRoughnessTexture", out.metallicRoughnessTexture,
               out.metallicRoughnessTransform);
     keepOnSet(normalSet, "normalTexture", out.normalTexture, out.normalTransform);
     convertEmission(in, where, out);
     // Emission without its texture would glow where the texture is dark: it is left out whole.
-    keepOnSet(emissiveSet, "emissiveTexture (and the emission)", out.emissiveTexture,
-              out.emissiveTransform);
-    if (emissiveSet >= 0 && emissiveSet != set) out.emissiveFactor = glm::vec3(0.0f);
+    if (!keepOnSet(emissiveSet, "emissiveTexture (and the emission)", out.emissiveTexture,
+                   out.emissiveTransform))
+      out.emissiveFactor = glm::vec3(0.0f);
     materialCoordinateSets_.push_back(set);
     out.doubleSided = in.doubleSided;
     convertSpecular(in, where, out);

@@ -43,6 +43,10 @@ CacheKey& CacheKey::add(const std::string& text) {
   return add(text.data(), text.size());
 }
 
+CacheKey& CacheKey::add(const engine::TextureTransform& t) {
+  return add(t.offset).add(t.rotation).add(t.scale);
+}
+
 CacheKey& CacheKey::add(const engine::Scene& scene) {
   addVector(scene.positions).addVector(scene.normals).addVector(scene.uvs);
   addVector(scene.indices).addVector(scene.triangleMaterial);
@@ -58,27 +62,19 @@ CacheKey& CacheKey::add(const engine::Scene& scene) {
                                                     &m.metallicRoughnessTransform};
     for (uint32_t i = 0; i < 2; ++i)
       if (!transforms[i]->identity())
-        add(std::string("KHR_texture_transform"))
-            .add(i)
-            .add(transforms[i]->offset)
-            .add(transforms[i]->rotation)
-            .add(transforms[i]->scale);
+        add(std::string("KHR_texture_transform")).add(i).add(*transforms[i]);
     // Only with emission or a normal map, so that the keys of scenes without them stay what they
     // were.
     if (m.emissiveFactor != glm::vec3(0.0f))
       add(std::string("emission"))
           .add(m.emissiveFactor)
           .add(m.emissiveTexture)
-          .add(m.emissiveTransform.offset)
-          .add(m.emissiveTransform.rotation)
-          .add(m.emissiveTransform.scale);
+          .add(m.emissiveTransform);
     if (m.normalTexture >= 0)
       add(std::string("normalTexture"))
           .add(m.normalTexture)
           .add(m.normalScale)
-          .add(m.normalTransform.offset)
-          .add(m.normalTransform.rotation)
-          .add(m.normalTransform.scale);
+          .add(m.normalTransform);
   }
   add(scene.textures.size());
   for (const engine::Texture& t : scene.textures) add(t.width).add(t.height).addVector(t.rgba8);

@@ -30,7 +30,8 @@ class CacheKey {
     return add(values.data(), values.size() * sizeof(T));
   }
   CacheKey& add(const std::string& text);
-  CacheKey& add(const engine::Scene& scene);  // geometry, materials, textures, lights
+  CacheKey& add(const engine::TextureTransform& t);  // offset, rotation, scale
+  CacheKey& add(const engine::Scene& scene);         // geometry, materials, textures, lights
   CacheKey& add(const engine::View& view);
   uint64_t value() const { return hash_; }
   std::string hex() const;
