@@ -110,6 +110,23 @@ void SceneBuilder::convertSpecular(const tinygltf::Material& in, const std::stri
   }
 }
 
+// glTF alphaMode: MASK keeps its cutoff (engine/alpha_cutout.h); BLEND is rendered opaque, with
+// a warning, because the module's light and the references know no partial coverage.
+void SceneBuilder::convertAlphaMode(const tinygltf::Material& in, const std::string& where,
+                                    Material& out) {
+  if (in.alphaMode == "OPAQUE") return;
+  if (in.alphaMode == "BLEND") {
+    scene_.warnings.push_back(located(where + " alphaMode BLEND: rendered opaque"));
+    return;
+  }
+  if (in.alphaMode != "MASK")
+    fail(where + ": alphaMode must be OPAQUE, MASK or BLEND (got '" + in.alphaMode + "')");
+  if (!(in.alphaCutoff >= 0.0) || !std::isfinite(in.alphaCutoff))
+    fail(where + ": alphaCutoff must be a finite number >= 0 (got " +
+         std::to_string(in.alphaCutoff) + ")");
+  out.alphaCutoff = static_cast<float>(in.alphaCutoff);
+}
+
 // glTF emission: emissiveFactor (3 values in [0, 1]) times KHR_materials_emissive_strength's
 // emissiveStrength (>= 0), and the emissive texture (sRGB, on the material's coordinate set).
 void SceneBuilder::convertEmission(const tinygltf::Material& in, const std::string& where,
@@ -200,6 +217,7 @@ void SceneBuilder::convertMaterials() {
       out.emissiveFactor = glm::vec3(0.0f);
     materialCoordinateSets_.push_back(set);
     out.doubleSided = in.doubleSided;
+    convertAlphaMode(in, where, out);
     convertSpecular(in, where, out);
     scene_.materials.push_back(std::move(out));
   }

@@ -44,6 +44,7 @@ class SceneBuilder : private ModelReader {
   void convertMaterials();
   void convertSpecular(const tinygltf::Material& in, const std::string& where, Material& out);
   void convertEmission(const tinygltf::Material& in, const std::string& where, Material& out) const;
+  void convertAlphaMode(const tinygltf::Material& in, const std::string& where, Material& out);
   void convertLights();
   void convertCameras();
 

@@ -353,6 +353,10 @@ class GltfBuilder {
           out["emissiveTexture"] =
               textureInfo(material.emissiveTexture, material.emissiveTransform);
       }
+      if (material.alphaCutoff > 0.0f) {
+        out["alphaMode"] = "MASK";
+        out["alphaCutoff"] = tidy(material.alphaCutoff);
+      }
       if (hasSpecular(material))
         out["extensions"]["KHR_materials_specular"] = {
             {"specularFactor", tidy(material.specularFactor)},

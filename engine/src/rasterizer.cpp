@@ -7,16 +7,30 @@
 
 namespace engine {
 
+namespace {
+
+// raster_triangles.comp with its alpha test (kAlphaTest) compiled in or out.
+ComputeProgram coverageProgram(Context& ctx, uint32_t alphaTest) {
+  const uint32_t specialization[] = {alphaTest};
+  const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return ComputeProgram(ctx, alphaTest ? "raster_triangles (alpha test)" : "raster_triangles",
+                        kRasterTrianglesSpv,
+                        {storage, storage, storage, storage, storage, storage, storage,
+                         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, storage},
+                        sizeof(gpu::RasterTrianglesPush), specialization);
+}
+
+}  // namespace
+
 Rasterizer::Rasterizer(Context& ctx)
     : ctx_(ctx),
       setup_(ctx, "raster_setup", kRasterSetupSpv,
              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-              VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+              VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+              VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
              sizeof(gpu::RasterSetupPush)),
-      coverage_(ctx, "raster_triangles", kRasterTrianglesSpv,
-                {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                 VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                sizeof(gpu::RasterTrianglesPush)),
+      coverage_(coverageProgram(ctx, 0)),
+      alphaCoverage_(coverageProgram(ctx, 1)),
       counters_(ctx, sizeof(gpu::RasterCounters),
                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                 MemoryUsage::GpuOnly) {}
@@ -29,6 +43,8 @@ void Rasterizer::reserve(uint32_t triangleCount) {
   if (needed <= capacity_) return;
   triangles_ = Buffer(ctx_, VkDeviceSize{needed} * sizeof(gpu::RasterTriangle),
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
+  groupAreas_ = Buffer(ctx_, VkDeviceSize{groupCount(needed, RASTER_GROUP_SIZE)} * sizeof(uint32_t),
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
   capacity_ = needed;
 }
 
@@ -70,6 +86,7 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
     gpu::RasterCounters zero{0, 0, 1, 1, 0, 0, 0, 0};
     updateBuffer(cmd, counters_, &zero, sizeof(zero));
     fillBuffer(cmd, *target.visibility, 0xFFFFFFFFu, target.offset, visBytes);
+    fillBuffer(cmd, groupAreas_, 0u);
     gpu::RasterSetupPush push{transform.matrix,
                               glm::vec4(transform.origin, 0.0f),
                               {target.width, target.height},
@@ -77,17 +94,28 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
                               capacity_};
     setup_.dispatch(cmd,
                     {Binding::storage(scene.vertices), Binding::storage(scene.indices),
-                     Binding::storage(triangles_), Binding::storage(counters_)},
+                     Binding::storage(triangles_), Binding::storage(counters_),
+                     Binding::storage(groupAreas_)},
                     push, groupCount(scene.triangleCount, RASTER_GROUP_SIZE));
     computeBarrier(cmd);
   }
   {
     ProfileScope scope(profiler, cmd, "raster coverage");
-    gpu::RasterTrianglesPush push{{target.width, target.height}, capacity_, 0};
-    coverage_.dispatchIndirect(cmd,
-                               {Binding::storage(triangles_), Binding::storage(counters_),
-                                Binding::storage(*target.visibility, target.offset, visBytes)},
-                               push, counters_, offsetof(gpu::RasterCounters, groupsX));
+    gpu::RasterTrianglesPush push{transform.matrix,
+                                  glm::vec4(transform.origin, 0.0f),
+                                  {target.width, target.height},
+                                  capacity_,
+                                  0};
+    (scene.alphaCutouts ? alphaCoverage_ : coverage_)
+        .dispatchIndirect(cmd,
+                          {Binding::storage(triangles_), Binding::storage(counters_),
+                           Binding::storage(*target.visibility, target.offset, visBytes),
+                           Binding::storage(scene.vertices), Binding::storage(scene.indices),
+                           Binding::storage(scene.triangleMaterials),
+                           Binding::storage(scene.materials),
+                           Binding::sampled(scene.baseColorTextures, scene.sampler.handle()),
+                           Binding::storage(groupAreas_)},
+                          push, counters_, offsetof(gpu::RasterCounters, groupsX));
     computeBarrier(cmd);
   }
 }

@@ -13,34 +13,19 @@
 namespace engine {
 namespace {
 
-// One texture as float RGBA in linear space, resampled to size x size (OpenImageIO's resize
-// picks a filter suited to the scale factor).
-std::vector<float> resampleLinear(const Texture& t, bool srgb, int size) {
-  OIIO::ImageSpec spec(t.width, t.height, 4, OIIO::TypeDesc::FLOAT);
-  OIIO::ImageBuf src(spec);
-  std::vector<float> linear(t.rgba8.size());
-  for (size_t i = 0; i < linear.size(); ++i) {
-    float c = static_cast<float>(t.rgba8[i]) / 255.0f;
-    linear[i] = (srgb && i % 4 != 3) ? srgbToLinear(c) : c;
+// One level's float RGBA (linear) as the bytes of its 8-bit format.
+void encodeLevel(const std::vector<float>& level, bool srgb, std::vector<uint8_t>& out) {
+  for (size_t i = 0; i < level.size(); ++i) {
+    float c = std::clamp(level[i], 0.0f, 1.0f);
+    if (srgb && i % 4 != 3) c = linearToSrgb(c);
+    out.push_back(static_cast<uint8_t>(std::lround(c * 255.0f)));
   }
-  src.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, linear.data());
-  if (t.width == size && t.height == size) return linear;
-  OIIO::ImageBuf dst =
-      OIIO::ImageBufAlgo::resize(src, "", 0.0f, OIIO::ROI(0, size, 0, size, 0, 1, 0, 4));
-  if (dst.has_error()) throw Error(t.name + ": cannot resample texture: " + dst.geterror());
-  std::vector<float> out(static_cast<size_t>(size) * size * 4);
-  dst.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, out.data());
-  return out;
 }
 
 // Appends mip 0..n of one layer: 2x2 box means in linear space, then encoded to bytes.
 void appendMipChain(std::vector<float> level, int size, bool srgb, std::vector<uint8_t>& out) {
   for (;;) {
-    for (size_t i = 0; i < level.size(); ++i) {
-      float c = std::clamp(level[i], 0.0f, 1.0f);
-      if (srgb && i % 4 != 3) c = linearToSrgb(c);
-      out.push_back(static_cast<uint8_t>(std::lround(c * 255.0f)));
-    }
+    encodeLevel(level, srgb, out);
     if (size == 1) break;
     int half = size / 2;
     std::vector<float> next(static_cast<size_t>(half) * half * 4);
@@ -92,6 +77,43 @@ Buffer makeStorage(Context& ctx, const std::vector<T>& data) {
 
 }  // namespace
 
+// One texture as float RGBA in linear space, resampled to size x size (OpenImageIO's resize
+// picks a filter suited to the scale factor).
+std::vector<float> resampleLinear(const Texture& t, bool srgb, int size) {
+  OIIO::ImageSpec spec(t.width, t.height, 4, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageBuf src(spec);
+  std::vector<float> linear(t.rgba8.size());
+  for (size_t i = 0; i < linear.size(); ++i) {
+    float c = static_cast<float>(t.rgba8[i]) / 255.0f;
+    linear[i] = (srgb && i % 4 != 3) ? srgbToLinear(c) : c;
+  }
+  src.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, linear.data());
+  if (t.width == size && t.height == size) return linear;
+  OIIO::ImageBuf dst =
+      OIIO::ImageBufAlgo::resize(src, "", 0.0f, OIIO::ROI(0, size, 0, size, 0, 1, 0, 4));
+  if (dst.has_error()) throw Error(t.name + ": cannot resample texture: " + dst.geterror());
+  std::vector<float> out(static_cast<size_t>(size) * size * 4);
+  dst.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, out.data());
+  return out;
+}
+
+std::vector<uint8_t> packedAlpha(const Texture& texture, int size) {
+  std::vector<uint8_t> rgba;
+  encodeLevel(resampleLinear(texture, false, size), false, rgba);
+  std::vector<uint8_t> alpha(rgba.size() / 4);
+  for (size_t i = 0; i < alpha.size(); ++i) alpha[i] = rgba[4 * i + 3];
+  return alpha;
+}
+
+int packedTextureSize(const Scene& scene) {
+  int largest = 1;
+  for (const Material& m : scene.materials)
+    for (int t :
+         {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
+      if (t >= 0) largest = std::max({largest, scene.textures[t].width, scene.textures[t].height});
+  return std::min(kMaxTextureSize, static_cast<int>(std::bit_ceil(static_cast<unsigned>(largest))));
+}
+
 SceneGpu uploadScene(Context& ctx, const Scene& scene) {
   SceneGpu gpu;
   gpu.triangleCount = scene.triangleCount();
@@ -115,7 +137,6 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
     return static_cast<int>(layers.size() - 1);
   };
   std::vector<gpu::SceneMaterial> materials;
-  int largest = 1;
   for (const Material& m : scene.materials) {
     gpu::SceneMaterial g{};
     g.baseColorFactor = m.baseColorFactor;
@@ -137,13 +158,11 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
     g.emissive = glm::vec4(m.emissiveFactor, 0.0f);
     g.emissiveUvU = glm::vec4(glm::vec3(m.emissiveTransform.rowU()), 0.0f);
     g.emissiveUvV = glm::vec4(glm::vec3(m.emissiveTransform.rowV()), 0.0f);
-    for (int t :
-         {m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture})
-      if (t >= 0) largest = std::max({largest, scene.textures[t].width, scene.textures[t].height});
+    g.alphaCutoff = m.alphaCutoff;
+    gpu.alphaCutouts = gpu.alphaCutouts || m.alphaCutoff > 0.0f;
     materials.push_back(g);
   }
-  int size =
-      std::min(kMaxTextureSize, static_cast<int>(std::bit_ceil(static_cast<unsigned>(largest))));
+  const int size = packedTextureSize(scene);
   gpu.textureSize = static_cast<uint32_t>(size);
 
   gpu.vertices = makeStorage(ctx, vertices);

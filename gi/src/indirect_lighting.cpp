@@ -566,6 +566,7 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
                                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   scene.sampler = engine::Sampler::borrow(s.sampler);
   scene.triangleCount = s.triangleCount;
+  scene.alphaCutouts = s.alphaCutouts;
   impl_->scene = std::move(scene);
   impl_->ismPointsStale = true;
   impl_->bounds = {s.boundsMin, s.boundsMax};

@@ -7,13 +7,56 @@
 #include <string>
 #include <vector>
 
+#include "engine/alpha_cutout.h"
 #include "engine/error.h"
 
 namespace truth {
 
+// What the alpha test of a hit needs (engine/alpha_cutout.h), kept beside the BVH.
+struct Cutouts {
+  engine::AlphaCutouts test;
+  std::vector<glm::vec2> uvs;
+  std::vector<uint32_t> indices;
+  std::vector<uint32_t> triangleMaterial;
+
+  Cutouts(engine::AlphaCutouts cutouts, const engine::Scene& scene)
+      : test(std::move(cutouts)), uvs(scene.uvs), indices(scene.indices),
+        triangleMaterial(scene.triangleMaterial) {
+    uvs.resize(scene.positions.size(), glm::vec2(0.0f));
+  }
+
+  // Whether the surface exists at barycentrics (u, v) of `triangle`, as the rasterizer decides
+  // it: base colour coordinates per corner, interpolated in fp32.
+  bool keeps(uint32_t triangle, float u, float v) const {
+    const uint32_t material = triangleMaterial[triangle];
+    if (!test.tested(material)) return true;
+    glm::vec2 c[3];
+    for (int k = 0; k < 3; ++k)
+      c[k] = test.coordinates(material, uvs[indices[3 * size_t{triangle} + k]]);
+    return test.opaque(material, c[0] * (1.0f - u - v) + c[1] * u + c[2] * v);
+  }
+};
+
+namespace {
+
+// Embree's intersection and occlusion filter: a hit where an alpha test cuts the surface is no
+// hit, and traversal goes on behind it.
+void cutoutFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* cutouts = static_cast<const Cutouts*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    if (!cutouts->keeps(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                        RTCHitN_v(args->hit, args->N, i)))
+      args->valid[i] = 0;
+  }
+}
+
+}  // namespace
+
 struct EmbreeScene::Handles {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::unique_ptr<Cutouts> cutouts;  // alpha-tested scenes only
 };
 
 EmbreeScene::EmbreeScene(const engine::Scene& scene) : handles_(std::make_unique<Handles>()) {
@@ -38,6 +81,12 @@ EmbreeScene::EmbreeScene(const engine::Scene& scene) : handles_(std::make_unique
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                               3 * sizeof(uint32_t), scene.triangleCount()));
   std::copy(scene.indices.begin(), scene.indices.end(), indices);
+  if (engine::AlphaCutouts cutouts(scene); cutouts.any()) {
+    handles_->cutouts = std::make_unique<Cutouts>(std::move(cutouts), scene);
+    rtcSetGeometryUserData(geometry, handles_->cutouts.get());
+    rtcSetGeometryIntersectFilterFunction(geometry, cutoutFilter);
+    rtcSetGeometryOccludedFilterFunction(geometry, cutoutFilter);
+  }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(handles_->scene, geometry);
   rtcReleaseGeometry(geometry);

@@ -75,6 +75,7 @@ CacheKey& CacheKey::add(const engine::Scene& scene) {
           .add(m.normalTexture)
           .add(m.normalScale)
           .add(m.normalTransform);
+    if (m.alphaCutoff > 0.0f) add(std::string("alphaCutoff")).add(m.alphaCutoff);
   }
   add(scene.textures.size());
   for (const engine::Texture& t : scene.textures) add(t.width).add(t.height).addVector(t.rgba8);

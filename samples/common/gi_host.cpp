@@ -110,6 +110,7 @@ gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::
   geometry.boundsMax = bounds.max;
   geometry.maxReflectance = maxReflectance(scene);
   geometry.canOcclude = canOcclude(scene);
+  geometry.alphaCutouts = gpuScene.alphaCutouts;
   geometry.maxSpecular = maxSpecular(scene);
   return geometry;
 }

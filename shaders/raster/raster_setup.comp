@@ -9,6 +9,7 @@
 
 #include "shared/raster.h"
 #include "shared/scene_data.h"
+#include "common/raster_clip.glsl"
 
 layout(local_size_x = RASTER_GROUP_SIZE) in;
 
@@ -16,16 +17,12 @@ layout(std430, binding = 0) readonly buffer Vertices { SceneVertex vertices[]; }
 layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 2) writeonly buffer Triangles { RasterTriangle triangles[]; };
 layout(std430, binding = 3) buffer Counters { RasterCounters counters; };
+// Pixel-box area of each group of RASTER_GROUP_SIZE list entries (zeroed before the pass): the
+// coverage pass's work groups per group of triangles (RASTER_CHUNK_PIXELS).
+layout(std430, binding = 4) buffer GroupAreas { uint groupAreas[]; };
 layout(push_constant) uniform Push { RasterSetupPush pc; };
 
-// Relative to the eye first: p - origin is exact when the two are close (Sterbenz), so a scene
-// far from the world origin keeps its depth order (docs/techniques/stability.md, case 6).
-vec4 toClip(vec3 world) {
-  precise vec3 p = world - pc.origin.xyz;
-  precise vec4 c = pc.viewProj[0] * p.x + pc.viewProj[1] * p.y + pc.viewProj[2] * p.z;
-  precise vec4 r = c + pc.viewProj[3];
-  return r;
-}
+vec4 toClip(vec3 world) { return rasterClip(pc.viewProj, pc.origin.xyz, world); }
 
 // Signed distance to clip plane k (inside >= 0): near z >= 0, then |x|, |y| <= G w.
 float planeDistance(vec4 v, int k) {
@@ -81,6 +78,9 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint triangleId) {
     return;
   }
   atomicMax(counters.groupsX, slot / RASTER_GROUP_SIZE + 1u);
+  uint boxArea = uint(pixHi.x - pixLo.x + 1) * uint(pixHi.y - pixLo.y + 1);
+  uint groupArea = atomicAdd(groupAreas[slot / RASTER_GROUP_SIZE], boxArea) + boxArea;
+  atomicMax(counters.groupsY, (groupArea + (RASTER_CHUNK_PIXELS - 1u)) / RASTER_CHUNK_PIXELS);
   RasterTriangle t;
   t.p0 = p0; t.p1 = p1; t.p2 = p2;
   t.bboxMin = uint(pixLo.x) | (uint(pixLo.y) << 16);

@@ -45,7 +45,8 @@
 // A texel no point reached (the uint bits of a NaN: above every non-negative float's bits).
 #define ISM_EMPTY 0xFFFFFFFFu
 #define ISM_INFINITY 0x7F800000u  // +inf: a texel of a tile without any point
-// A pool point that lies on no surface (the scene has no area): skipped by the splat.
+// A pool point that lies on no surface (the scene has no area, or an alpha test cut the point):
+// skipped by the splat.
 #define ISM_NO_TRIANGLE 0xFFFFFFFFu
 // R2 sequence (Roberts 2018): frac(1/2 + i / phi2^k), phi2 = 1.3247179572 (the plastic number),
 // as 32-bit fixed point so that i * a wraps exactly in uint arithmetic: round(2^32 / phi2) and
@@ -70,7 +71,7 @@ SHARED_BEGIN
 // One pool point: a triangle and the barycentric weights of its vertices 1 and 2 as
 // packUnorm2x16 (1/65535 of an edge: 0.15 mm on a 10 m triangle).
 struct IsmPoint {
-  uint triangle;  // ISM_NO_TRIANGLE when the scene has no area
+  uint triangle;  // ISM_NO_TRIANGLE when the scene has no area or the point is cut out
   uint bary;      // unorm16 x 2: (b1, b2); b0 = 1 - b1 - b2
 };
 

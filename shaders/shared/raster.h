@@ -13,6 +13,17 @@
 // with RASTER_MAX_VIEWPORT 8192, |x| < 8.5 * 8192 * 256 < 2^25, products < 2^52.
 #define RASTER_GUARD_BAND 16.0
 #define RASTER_MAX_VIEWPORT 8192
+// The coverage pass gives each work group at most this many of the pixels in the boxes of its
+// RASTER_GROUP_SIZE triangles (a second dispatch dimension covers the rest,
+// RasterCounters::groupsY; a group's boxes sum to less than 2^32 unless all 64 of its triangles
+// fill an 8192^2 view). Besides
+// spreading large triangles over many work groups, this bounds the loop iterations of one
+// invocation: lavapipe (llvmpipe) silently ends a shader's loops once one invocation has run
+// 65 535 iterations of them in total, and a thread walks 2^17 / 64 = 2 048 pixels here, about 8
+// iterations each (the pixel loop and its binary search), ~16 000 in all. Without the bound a
+// group of large triangles lost most of its pixels: a 512^2 shadow map of two 4 m quads 2 m
+// below a spot showed the floor behind them instead.
+#define RASTER_CHUNK_PIXELS 131072u
 // Clipping a triangle by 5 planes leaves at most 8 vertices, i.e. 6 fan triangles.
 #define RASTER_MAX_CLIP_VERTICES 8
 // An empty visibility-buffer texel: (depth bits << 32) | triangle id, all ones.
@@ -39,7 +50,7 @@ struct RasterTriangle {
 struct RasterCounters {
   uint triangleCount;  // entries appended to the RasterTriangle list
   uint groupsX;        // ceil(triangleCount / RASTER_GROUP_SIZE)
-  uint groupsY;        // 1
+  uint groupsY;        // the largest group's pixel-box area / RASTER_CHUNK_PIXELS, rounded up
   uint groupsZ;        // 1
   uint dropped;        // entries lost because the list was full (a bug if ever non-zero)
   uint pad0;
@@ -56,6 +67,8 @@ struct RasterSetupPush {
 };
 
 struct RasterTrianglesPush {
+  mat4 viewProj;  // RasterSetupPush's transform: the alpha test's barycentrics
+  vec4 origin;
   uvec2 viewport;
   uint capacity;
   uint pad;
@@ -68,5 +81,5 @@ SHARED_ASSERT_OFFSET(RasterTriangle, bboxMin, 24);
 SHARED_ASSERT_OFFSET(RasterTriangle, z0, 32);
 SHARED_ASSERT_SIZE(RasterCounters, 32);
 SHARED_ASSERT_SIZE(RasterSetupPush, 96);
-SHARED_ASSERT_SIZE(RasterTrianglesPush, 16);
+SHARED_ASSERT_SIZE(RasterTrianglesPush, 96);
 #endif

@@ -43,11 +43,17 @@ struct SceneMaterial {
   vec4 emissive;
   vec4 emissiveUvU;
   vec4 emissiveUvV;
+  // glTF alphaMode MASK (engine::Material::alphaCutoff): no surface where baseColorFactor.a x
+  // the base colour layer's alpha lies below it (common/alpha_cutout.glsl); 0 = opaque.
+  float alphaCutoff;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 SHARED_END
 
 SHARED_ASSERT_SIZE(SceneVertex, 32);
-SHARED_ASSERT_SIZE(SceneMaterial, 208);
+SHARED_ASSERT_SIZE(SceneMaterial, 224);
 SHARED_ASSERT_OFFSET(SceneMaterial, metallic, 32);
 #endif

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <random>
 
+#include "engine/alpha_cutout.h"
 #include "engine/builtin_scenes.h"
 #include "engine/direct_light.h"
 #include "engine/raster_reference.h"
@@ -214,6 +215,111 @@ TEST_F(Rasterizer, NearPlaneClippedGroundIsWatertight) {
   GpuRaster gpu = rasterizeGpu(ctx(), grid, vp, w, h);
   EXPECT_TRUE(sameVisibility(gpu.visibility, cpu.visibility, w));
   EXPECT_EQ(gpu.counters.dropped, 0u);
+}
+
+TEST_F(Rasterizer, AlphaCutoutsMatchTheTwinAndCutTheirShare) {
+  // A ground of alpha-tested triangles, some straddling the near plane and the guard band, with
+  // a transformed, random-alpha texture whose 13 x 7 texels are resampled to the packed 16 x 16
+  // layer, and an opaque wall behind it. The twin evaluates the same fp32 operations, so the
+  // visibility must match bit for bit; the ground keeps about its texels' opaque share.
+  const uint32_t w = 101, h = 67;
+  Scene scene = jitteredGrid(40, 30.0f, true, -1.0f, 11);
+  const size_t groundTriangles = scene.triangleCount();
+  Scene wall = jitteredGrid(4, 40.0f, false, -25.0f, 5);
+  const auto base = static_cast<uint32_t>(scene.positions.size());
+  scene.positions.insert(scene.positions.end(), wall.positions.begin(), wall.positions.end());
+  scene.normals.insert(scene.normals.end(), wall.normals.begin(), wall.normals.end());
+  for (uint32_t i : wall.indices) scene.indices.push_back(base + i);
+  scene.triangleMaterial.resize(scene.triangleCount(), 1);
+  scene.uvs.clear();
+  for (const glm::vec3& p : scene.positions) scene.uvs.push_back(glm::vec2(p.x, p.z) * 0.37f);
+  engine::Texture texture{"random alpha", 13, 7, {}};
+  std::mt19937 rng(5);
+  for (int i = 0; i < 13 * 7; ++i)
+    texture.rgba8.insert(texture.rgba8.end(), {200, 200, 200, static_cast<uint8_t>(rng() & 255)});
+  scene.textures.push_back(texture);
+  engine::Material& ground = scene.materials[0];
+  ground.baseColorTexture = 0;
+  ground.baseColorFactor.a = 0.9f;
+  ground.alphaCutoff = 0.5f;
+  ground.baseColorTransform = {glm::vec2(0.1f, -0.2f), 0.3f, glm::vec2(1.7f, 0.8f)};
+  scene.materials.push_back({});  // the wall, opaque
+
+  glm::vec3 eye(0.3f, 0.0f, 0.2f);
+  glm::mat4 view = engine::lookAlong(eye, glm::vec3(0.2f, -0.25f, -1.0f), glm::vec3(0, 1, 0));
+  glm::mat4 vp =
+      engine::perspectiveVulkan(1.2f, static_cast<float>(w) / static_cast<float>(h), 0.05f, 0.0f) *
+      view;
+  engine::ReferenceRaster cpu = engine::rasterizeReference(scene, vp, w, h);
+  GpuRaster gpu = rasterizeGpu(ctx(), scene, vp, w, h);
+  EXPECT_TRUE(sameVisibility(gpu.visibility, cpu.visibility, w));
+  EXPECT_EQ(gpu.counters.dropped, 0u);
+
+  // Cut pixels show the wall (or the sky), never another ground triangle; the ground keeps
+  // about the share of the packed layer's texels that pass.
+  Scene opaque = scene;
+  opaque.materials[0].alphaCutoff = 0.0f;
+  engine::ReferenceRaster full = engine::rasterizeReference(opaque, vp, w, h);
+  auto isGround = [&](uint64_t v) {
+    return v != ~uint64_t{0} && (v & 0xFFFFFFFFu) < groundTriangles;
+  };
+  size_t groundPixels = 0, kept = 0;
+  for (size_t i = 0; i < full.visibility.size(); ++i) {
+    if (!isGround(full.visibility[i])) continue;
+    ++groundPixels;
+    if (isGround(cpu.visibility[i])) {
+      ++kept;
+      EXPECT_EQ(cpu.visibility[i], full.visibility[i]) << "pixel " << i;
+    }
+  }
+  const engine::AlphaCutouts cutouts(scene);
+  size_t passing = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x)
+      passing += cutouts.opaque(0, glm::vec2((x + 0.5f) / 16.0f, (y + 0.5f) / 16.0f));
+  const double share = static_cast<double>(passing) / 256.0;
+  ASSERT_GT(groundPixels, size_t{w} * h / 4);
+  // About 3 000 pixels over many texels: a binomial spread of ~0.01; 0.06 leaves room for the
+  // perspective's uneven weighting of the 256 texels.
+  EXPECT_NEAR(static_cast<double>(kept) / static_cast<double>(groundPixels), share, 0.06);
+  EXPECT_GT(share, 0.2);
+  EXPECT_LT(share, 0.8);
+}
+
+TEST_F(Rasterizer, LargeTrianglesInALargeViewMatchTheTwin) {
+  // Two 4 m quads, 1 m apart, below a spot's 1024^2 view: four triangles whose pixel boxes hold
+  // 4 M pixels, which one work group once walked alone, until lavapipe ended its loop after
+  // 65 535 iterations and the nearer quad went missing (shared/raster.h, RASTER_CHUNK_PIXELS).
+  // With an alpha-tested checker on the nearer quad too.
+  const uint32_t size = 1024;
+  Scene scene = jitteredGrid(1, 2.0f, true, 1.0f, 1);
+  Scene floor = jitteredGrid(1, 3.0f, true, 0.0f, 1);
+  const auto base = static_cast<uint32_t>(scene.positions.size());
+  scene.positions.insert(scene.positions.end(), floor.positions.begin(), floor.positions.end());
+  scene.normals.insert(scene.normals.end(), floor.normals.begin(), floor.normals.end());
+  scene.uvs = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0, 0}, {0, 0}, {0, 0}, {0, 0}};
+  for (uint32_t i : floor.indices) scene.indices.push_back(base + i);
+  scene.triangleMaterial = {0, 0, 1, 1};
+  scene.materials.push_back({});
+  scene.textures.push_back({"checker", 2, 2, {255, 255, 255, 255, 255, 255, 255, 0,
+                                              255, 255, 255, 0, 255, 255, 255, 255}});
+  scene.materials[0].baseColorTexture = 0;
+  const glm::mat4 vp = engine::perspectiveVulkan(1.0f, 1.0f, 0.05f, 10.0f) *
+                       engine::lookAlong(glm::vec3(0, 3, 0), glm::vec3(0, -1, 0),
+                                         glm::vec3(0, 0, -1));
+  for (const float cutoff : {0.0f, 0.5f}) {
+    SCOPED_TRACE(cutoff > 0.0f ? "alpha-tested" : "opaque");
+    scene.materials[0].alphaCutoff = cutoff;
+    engine::ReferenceRaster cpu = engine::rasterizeReference(scene, vp, size, size);
+    GpuRaster gpu = rasterizeGpu(ctx(), scene, vp, size, size);
+    EXPECT_TRUE(sameVisibility(gpu.visibility, cpu.visibility, size));
+    EXPECT_GE(gpu.counters.groupsY, 4u * size * size / RASTER_CHUNK_PIXELS - 4u);
+    size_t nearer = 0;
+    for (uint64_t v : gpu.visibility) nearer += v != ~uint64_t{0} && (v & 0xFFFFFFFFu) < 2u;
+    // The view's half width at the nearer quad is 2 tan(0.5) = 1.09 m < 2 m: it fills the view,
+    // or the opaque half of it.
+    EXPECT_EQ(nearer, cutoff > 0.0f ? size_t{size} * size / 2 : size_t{size} * size);
+  }
 }
 
 TEST_F(Rasterizer, EmptyViewLeavesBufferEmpty) {

@@ -7,8 +7,10 @@
 
 #include "engine/builtin_scenes.h"
 #include "engine/gbuffer_reference.h"
+#include "engine/gltf.h"
 #include "gpu_fixture.h"
 #include "passes/rsm.h"
+#include "rsm_rig.h"
 #include "reference/rsm_reference.h"
 
 namespace {
@@ -115,6 +117,46 @@ TEST_F(Rsm, FluxMatchesReferenceOnBuiltinScenes) {
         SCOPED_TRACE(name + ", " + light.name + ", view " + std::to_string(v));
         expectFluxMatchesReference(renderRsm(ctx(), scene, light, views[v], size), views[v], light);
       }
+    }
+  }
+}
+
+// alpha_mask.gltf: a spot 2 m above a screen whose 1 m checker cells alternate opaque and cut
+// out (alphaMode MASK), a green floor 1 m below it. The RSM sees the floor exactly through the
+// holes: each texel whose ray meets the screen plane in a cut cell shows the floor's green, every
+// other one the screen's grey (texels whose ray passes within 4 mm of a cell edge, under a
+// quarter of a texel there, are not judged: the GPU interpolates the coordinates in fp32).
+// Without the cut-outs the screen hides the floor from every texel.
+TEST_F(Rsm, AlphaMaskCutsTheLightsView) {
+  const uint32_t size = 128;
+  for (const bool cut : {true, false}) {
+    SCOPED_TRACE(cut ? "MASK" : "OPAQUE");
+    engine::Scene scene =
+        engine::loadGltf(std::string(VSGL_TEST_DATA) + "/gltf/alpha_mask.gltf");
+    if (!cut) scene.materials[1].alphaCutoff = 0.0f;
+    testing_gpu::RsmRig rig(ctx(), scene, size);
+    const engine::GBufferData g = engine::readbackGBuffer(ctx(), rig.rsm->surface());
+    size_t judged = 0, floorSeen = 0;
+    for (uint32_t y = 0; y < size; ++y)
+      for (uint32_t x = 0; x < size; ++x) {
+        const engine::CameraRay ray =
+            engine::cameraRayReference(rig.view.view, glm::dvec2(x + 0.5, y + 0.5));
+        const glm::dvec3 onScreen = ray.origin + ray.dir * ((1.0 - ray.origin.y) / ray.dir.y);
+        const glm::dvec2 cell = (glm::dvec2(onScreen.x, onScreen.z) + 2.0);  // 1 m cells
+        const glm::dvec2 edge = glm::abs(cell - glm::round(cell));
+        if (std::min(edge.x, edge.y) < 0.004) continue;
+        const bool hole = (static_cast<int>(cell.x) + static_cast<int>(cell.y)) % 2 == 1;
+        const engine::GBufferSample& s = g.samples[size_t{y} * size + x];
+        ASSERT_FALSE(s.background()) << "texel " << x << ", " << y;
+        const bool green = s.diffuse.g > 2.0 * s.diffuse.r;
+        EXPECT_EQ(green, cut && hole) << "texel " << x << ", " << y;
+        ++judged;
+        floorSeen += green;
+      }
+    EXPECT_GT(judged, size_t{size} * size * 9 / 10);
+    if (cut) {
+      EXPECT_GT(floorSeen, judged / 3);
+      EXPECT_LT(floorSeen, judged * 2 / 3);
     }
   }
 }

@@ -10,8 +10,10 @@
 
 #include "analytic_scene.h"
 #include "embree_scene.h"
+#include "engine/alpha_cutout.h"
 #include "engine/builtin_scenes.h"
 #include "engine/gbuffer_reference.h"
+#include "engine/gltf.h"
 #include "light_rigs.h"
 #include "mirror_planes.h"
 #include "path_tracer.h"
@@ -143,6 +145,33 @@ TEST(PathTracer, EmissionIsInTheDirectTermOnly) {
 // 2.4 m, and only their triangles belong to it; the Cornell box keeps its floor (alpha 0.04) and
 // not its glossy wall (0.0625 > kMirrorAlpha); the atrium (alpha >= 0.25) has none. The area is
 // a sum of 576 fp32 triangles: 1e-6 relative.
+// alpha_mask.gltf's screen (y = 1, 1 m checker cells of alphaMode MASK over a floor at y = 0):
+// a ray straight down meets the screen on an opaque cell and the floor through a hole, and a
+// segment from the floor up to the light is occluded exactly where it crosses an opaque cell.
+TEST(EmbreeScene, AlphaCutoutsLetRaysThroughTheHoles) {
+  const engine::Scene scene =
+      engine::loadGltf(std::string(VSGL_TEST_DATA) + "/gltf/alpha_mask.gltf");
+  const truth::EmbreeScene rays(scene);
+  const engine::AlphaCutouts cutouts(scene);
+  size_t holes = 0, cells = 0;
+  for (double z = -1.9; z < 2.0; z += 0.2)
+    for (double x = -1.9; x < 2.0; x += 0.2) {
+      const bool opaque = cutouts.opaque(1, glm::vec2((x + 2.0) / 4.0, (z + 2.0) / 4.0));
+      const truth::RayHit hit = rays.intersect({x, 2.0, z}, {0.0, -1.0, 0.0});
+      ASSERT_TRUE(hit.hit);
+      EXPECT_NEAR(hit.t, opaque ? 1.0 : 2.0, 1e-5) << x << ", " << z;
+      EXPECT_EQ(scene.triangleMaterial[hit.triangle], opaque ? 1u : 0u);
+      const glm::dvec3 floor(x, 1e-4, z), light(0.0, 3.0, 0.0);
+      EXPECT_EQ(rays.visible(floor, light), !cutouts.opaque(1, [&] {
+        const glm::dvec3 at = floor + (light - floor) * ((1.0 - floor.y) / (light.y - floor.y));
+        return glm::vec2((at.x + 2.0) / 4.0, (at.z + 2.0) / 4.0);
+      }())) << x << ", " << z;
+      holes += !opaque;
+      ++cells;
+    }
+  EXPECT_EQ(holes * 2, cells);  // the checker: half the samples fall on holes
+}
+
 TEST(MirrorPlanes, FindsTheNearMirrorPlanes) {
   const engine::Scene checker = engine::makeBuiltinScene("checker");
   const truth::MirrorPlanes planes = truth::findMirrorPlanes(checker);

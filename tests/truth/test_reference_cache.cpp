@@ -73,6 +73,9 @@ TEST(ReferenceCache, KeyChangesWithEveryInput) {
   scene.materials[0].normalScale = 0.5f;
   EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), normal);
   scene = truth::makeAnalyticScene(params);
+  scene.materials[0].alphaCutoff = 0.5f;  // cut-outs change what the rays meet
+  EXPECT_NE(truth::CacheKey().add(scene).add(view).value(), base);
+  scene = truth::makeAnalyticScene(params);
   EXPECT_EQ(truth::CacheKey().add(scene).add(view).value(), base);
   const engine::View wider = engine::cameraView(scene.cameras.front(), 9, 6);
   EXPECT_NE(truth::CacheKey().add(scene).add(wider).value(), base);

@@ -539,6 +539,43 @@ TEST(GltfLoader, ReadsAndWritesEmission) {
   expectLoadError(dir / "negative.gltf", "emissiveStrength must be a finite number >= 0");
 }
 
+TEST(GltfLoader, ReadsAndWritesAlphaModes) {
+  const engine::Scene scene = engine::loadGltf((kGltfData / "alpha_mask.gltf").string());
+  EXPECT_TRUE(scene.warnings.empty());
+  ASSERT_EQ(scene.materials.size(), 2u);
+  EXPECT_EQ(scene.materials[0].alphaCutoff, 0.0f);  // OPAQUE
+  EXPECT_EQ(scene.materials[1].alphaCutoff, 0.5f);
+  EXPECT_GE(scene.materials[1].baseColorTexture, 0);
+
+  TempDir dir;
+  engine::writeGltf(scene, (dir / "back.gltf").string());
+  const json written = json::parse(readText(dir / "back.gltf"));
+  EXPECT_EQ(written["materials"][1]["alphaMode"], "MASK");
+  EXPECT_EQ(written["materials"][1]["alphaCutoff"], 0.5);
+  EXPECT_FALSE(written["materials"][0].contains("alphaMode"));
+  EXPECT_EQ(engine::loadGltf((dir / "back.gltf").string()).materials[1].alphaCutoff, 0.5f);
+
+  json gltf = json::parse(readText(kGltfData / "alpha_mask.gltf"));
+  gltf["materials"][1].erase("alphaCutoff");  // MASK's default cutoff is 0.5
+  gltf["materials"][0]["alphaMode"] = "BLEND";
+  writeText(dir / "blend.gltf", gltf.dump());
+  const engine::Scene blend = engine::loadGltf((dir / "blend.gltf").string());
+  EXPECT_EQ(blend.materials[1].alphaCutoff, 0.5f);
+  EXPECT_EQ(blend.materials[0].alphaCutoff, 0.0f);
+  ASSERT_EQ(blend.warnings.size(), 1u);
+  EXPECT_NE(blend.warnings[0].find("material 'floor' alphaMode BLEND: rendered opaque"),
+            std::string::npos)
+      << blend.warnings[0];
+
+  gltf["materials"][0]["alphaMode"] = "CUTOUT";
+  writeText(dir / "unknown.gltf", gltf.dump());
+  expectLoadError(dir / "unknown.gltf", "alphaMode must be OPAQUE, MASK or BLEND (got 'CUTOUT')");
+  gltf["materials"][0]["alphaMode"] = "MASK";
+  gltf["materials"][0]["alphaCutoff"] = -0.25;
+  writeText(dir / "negative.gltf", gltf.dump());
+  expectLoadError(dir / "negative.gltf", "alphaCutoff must be a finite number >= 0");
+}
+
 TEST(GltfLoader, TexturesOnASecondCoordinateSet) {
   TempDir dir;
   fs::copy_file(kGltfData / "checker2x2.png", dir / "checker2x2.png");

@@ -15,8 +15,8 @@ namespace engine {
 
 struct ReferenceRaster {
   std::vector<uint64_t> visibility;  // as the GPU: (depth bits << 32) | triangle id, ~0 empty
-  std::vector<uint32_t> coverage;    // fan triangles covering each pixel (tests: 0 or 1 on a
-                                     // watertight surface)
+  std::vector<uint32_t> coverage;    // fan triangles covering each pixel where no alpha test
+                                     // cuts them (tests: 0 or 1 on a watertight surface)
 };
 
 ReferenceRaster rasterizeReference(const Scene& scene, const glm::mat4& viewProj, uint32_t width,

@@ -2,8 +2,9 @@
 // (float depth bits << 32) | triangle id, the nearest surface winning; all ones = empty.
 // Two dispatches: raster_setup (per triangle: transform, clip, snap, append) and an indirect
 // raster_triangles (coverage with a top-left fill rule, 64-bit atomicMin). No back-face
-// culling, so single- and double-sided geometry both render. The same code renders camera
-// views, shadow maps and (later) reflective shadow maps.
+// culling, so single- and double-sided geometry both render; alpha-tested materials (glTF MASK)
+// cover a pixel only where their cut-out test keeps the surface (engine/alpha_cutout.h). The
+// same code renders camera views, shadow maps and reflective shadow maps.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -61,7 +62,9 @@ class Rasterizer {
   Context& ctx_;
   ComputeProgram setup_;
   ComputeProgram coverage_;
-  Buffer triangles_;  // gpu::RasterTriangle list
+  ComputeProgram alphaCoverage_;  // with the alpha test, for scenes with SceneGpu::alphaCutouts
+  Buffer triangles_;   // gpu::RasterTriangle list
+  Buffer groupAreas_;  // pixel-box area per RASTER_GROUP_SIZE entries of the list
   Buffer counters_;   // gpu::RasterCounters
   uint32_t capacity_ = 0;
 };

@@ -72,6 +72,11 @@ struct Material {
   float specularFactor = 1.0f;          // [0, 1]
   glm::vec3 specularColorFactor{1.0f};  // linear RGB, >= 0
   bool doubleSided = false;
+  // glTF alphaMode MASK: where the alpha (baseColorFactor.a x the base colour texture's alpha)
+  // lies below the cutoff there is no surface, for the light as for the camera
+  // (engine/alpha_cutout.h). 0 for OPAQUE and BLEND (rendered opaque), and for a MASK cutoff of
+  // 0, which keeps every texel alike.
+  float alphaCutoff = 0.0f;
 };
 
 enum class LightType : uint32_t { Directional = 0, Point = 1, Spot = 2 };

@@ -19,8 +19,21 @@ struct SceneGpu {
   Sampler sampler;           // trilinear, repeat
   uint32_t triangleCount = 0;
   uint32_t textureSize = 1;  // every layer is resampled to this square power-of-two size
+  // Whether any material is alpha-tested (Material::alphaCutoff > 0): the rasterizer and the ISM
+  // points then run their variants with the cut-out test (engine/alpha_cutout.h).
+  bool alphaCutouts = false;
 };
 
 SceneGpu uploadScene(Context& ctx, const Scene& scene);
+
+// The square side of every packed texture layer: the largest side of the materials' textures
+// rounded up to a power of two, at most kMaxTextureSize.
+int packedTextureSize(const Scene& scene);
+// One texture as float RGBA in linear space (sRGB decoded for colour roles), resampled to
+// size x size as its packed layer's top mip is.
+std::vector<float> resampleLinear(const Texture& texture, bool srgb, int size);
+// The alpha bytes of a texture's packed top mip (alpha is never sRGB-encoded), as the GPU's
+// texelFetch of level 0 reads them.
+std::vector<uint8_t> packedAlpha(const Texture& texture, int size);
 
 }  // namespace engine

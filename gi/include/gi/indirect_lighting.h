@@ -103,6 +103,10 @@ struct SceneGeometry {
   // convex room, where every vertex lies on or in front of every triangle's plane: the
   // effect planner then skips the ISMs (FramePlan). A host that does not know leaves true.
   bool canOcclude = true;
+  // Whether any material is alpha-tested (SceneMaterial::alphaCutoff > 0, glTF MASK). false
+  // runs the RSM's raster and the ISM points without the cut-out test (compiled out). A host
+  // that does not know leaves true.
+  bool alphaCutouts = true;
 };
 
 // The light that bounces: a spot, directional or point light in KHR_lights_punctual units. A

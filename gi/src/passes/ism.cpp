@@ -74,8 +74,14 @@ Ism::Ism(engine::Context& ctx, const IsmSettings& settings, uint32_t maxVsgls)
       engine::ComputeProgram(ctx, "ism_area", kIsmAreaSpv, buffers(3), sizeof(gpu::IsmAreaPush));
   scan_ =
       engine::ComputeProgram(ctx, "ism_scan", kIsmScanSpv, buffers(1), sizeof(gpu::IsmAreaPush));
-  pointsProgram_ = engine::ComputeProgram(ctx, "ism_points", kIsmPointsSpv, buffers(2),
-                                          sizeof(gpu::IsmPointsPush));
+  for (uint32_t alphaTest : {0u, 1u}) {
+    const uint32_t specialization[] = {alphaTest};
+    std::vector<VkDescriptorType> bindings = buffers(6);
+    bindings.push_back(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    pointsPrograms_[alphaTest] = engine::ComputeProgram(
+        ctx, alphaTest ? "ism_points (alpha test)" : "ism_points", kIsmPointsSpv, bindings,
+        sizeof(gpu::IsmPointsPush), specialization);
+  }
   positionsProgram_ =
       engine::ComputeProgram(ctx, "ism_positions", kIsmPositionsSpv,
                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
@@ -157,8 +163,13 @@ void Ism::recordPoints(VkCommandBuffer cmd, const engine::SceneGpu& scene,
   scan_.dispatch(cmd, {Binding::storage(cdf_)}, areaPush, 1);
   engine::computeBarrier(cmd);
   const gpu::IsmPointsPush pointsPush{triangles, settings_.pointCount, 0, 0};
-  pointsProgram_.dispatch(cmd, {Binding::storage(cdf_), Binding::storage(points_)}, pointsPush,
-                          engine::groupCount(settings_.pointCount, ISM_GROUP_SIZE));
+  pointsPrograms_[scene.alphaCutouts ? 1 : 0].dispatch(
+      cmd,
+      {Binding::storage(cdf_), Binding::storage(points_), Binding::storage(scene.vertices),
+       Binding::storage(scene.indices), Binding::storage(scene.triangleMaterials),
+       Binding::storage(scene.materials),
+       Binding::sampled(scene.baseColorTextures, scene.sampler.handle())},
+      pointsPush, engine::groupCount(settings_.pointCount, ISM_GROUP_SIZE));
   engine::computeBarrier(cmd);
 }
 

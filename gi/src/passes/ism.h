@@ -82,7 +82,7 @@ class Ism {
   bool pointsRecorded_ = false;
   engine::ComputeProgram area_;
   engine::ComputeProgram scan_;
-  engine::ComputeProgram pointsProgram_;
+  engine::ComputeProgram pointsPrograms_[2];  // without and with the alpha test
   engine::ComputeProgram positionsProgram_;
   engine::ComputeProgram splat_;
   engine::ComputeProgram pull_;

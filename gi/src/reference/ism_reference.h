@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "engine/scene.h"
 #include "shared/ism.h"
 #include "shared/vsgl.h"
 
@@ -33,6 +34,10 @@ struct IsmPointReference {
 };
 std::vector<IsmPointReference> ismPointsReference(IsmPositions positions, IsmIndices indices,
                                                   uint32_t pointCount);
+// ism_points.comp's alpha test: a point of the pool that an alpha-tested material of `scene`
+// cuts (engine/alpha_cutout.h) lies on no triangle. The test is made at the barycentrics
+// rounded to unorm16, where the GPU places the point.
+void ismCutPointsReference(std::vector<IsmPointReference>& points, const engine::Scene& scene);
 
 // World position of a (GPU) pool point on the current geometry; nullopt-like: w = 0 when the
 // point lies on no triangle.

@@ -199,18 +199,22 @@ def mirrored():
     save("mirrored.gltf", g)
 
 
-def png_2x2():
-    """RGBA 2x2: red, green / blue, white (rows top to bottom), all opaque."""
-    rows = [bytes([255, 0, 0, 255, 0, 255, 0, 255]), bytes([0, 0, 255, 255, 255, 255, 255, 255])]
-    raw = b"".join(b"\0" + r for r in rows)
+def png_rgba(rows):
+    """An RGBA PNG from rows (top to bottom) of (r, g, b, a) byte tuples."""
+    raw = b"".join(b"\0" + bytes(c for texel in row for c in texel) for row in rows)
 
     def chunk(tag, body):
         return (struct.pack(">I", len(body)) + tag + body
                 + struct.pack(">I", zlib.crc32(tag + body) & 0xFFFFFFFF))
 
-    header = struct.pack(">IIBBBBB", 2, 2, 8, 6, 0, 0, 0)
+    header = struct.pack(">IIBBBBB", len(rows[0]), len(rows), 8, 6, 0, 0, 0)
     return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw))
             + chunk(b"IEND", b""))
+
+
+def png_2x2():
+    """RGBA 2x2: red, green / blue, white (rows top to bottom), all opaque."""
+    return png_rgba([[(255, 0, 0, 255), (0, 255, 0, 255)], [(0, 0, 255, 255), (255, 255, 255, 255)]])
 
 
 def textured():
@@ -234,6 +238,58 @@ def textured():
     g["nodes"] = [{"mesh": 0}, light_node(0, translation=[0, 0, 3.0])]
     b.write_into(g)
     save("textured.gltf", g)
+
+
+def quad(buffer, half, height, uv_scale=1.0):
+    """A square of side 2 half in the plane y = height facing +Y, texture coordinates 0..uv_scale
+    across it (v down the image: along +z)."""
+    points = [(-half, height, -half), (half, height, -half), (half, height, half),
+              (-half, height, half)]
+    uvs = [(0.0, 0.0), (uv_scale, 0.0), (uv_scale, uv_scale), (0.0, uv_scale)]
+    return {"attributes": {"POSITION": buffer.positions(points),
+                           "NORMAL": buffer.vec3([(0.0, 1.0, 0.0)] * 4),
+                           "TEXCOORD_0": buffer.vec2(uvs)},
+            "indices": buffer.indices([0, 2, 1, 0, 3, 2], U16)}
+
+
+def alpha_mask():
+    """A green 6 x 6 m floor (y = 0) under a 4 x 4 m screen (y = 1) of alphaMode MASK whose base
+    colour texture is a 4 x 4 checker of opaque and fully transparent 1 m cells, lit by a spot
+    2 m above the screen pointing down, seen by a camera from the side: the light reaches the
+    floor through the holes only, in the RSM as in the direct light."""
+    b = Buffer()
+    opaque, hole = (230, 230, 230, 255), (230, 230, 230, 0)
+    checker = [[opaque if (x + y) % 2 == 0 else hole for x in range(4)] for y in range(4)]
+    g = base_gltf()
+    g["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_rgba(checker)).decode()}]
+    g["textures"] = [{"source": 0}]
+    g["materials"] = [
+        {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.7, 0.1, 1.0],
+                                                   "metallicFactor": 0.0}},
+        {"name": "screen", "doubleSided": True, "alphaMode": "MASK", "alphaCutoff": 0.5,
+         "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}]
+    floor = quad(b, 3.0, 0.0)
+    floor["material"] = 0
+    screen = quad(b, 2.0, 1.0)
+    screen["material"] = 1
+    g["meshes"] = [{"name": "floor", "primitives": [floor]},
+                   {"name": "screen", "primitives": [screen]}]
+    g["cameras"] = [{"name": "side", "type": "perspective",
+                     "perspective": {"yfov": 0.9, "znear": 0.1}}]
+    s = math.sqrt(0.5)
+    g["extensions"] = lights_extension(
+        [{"type": "spot", "name": "spot", "intensity": 60.0,
+          "spot": {"innerConeAngle": 0.4, "outerConeAngle": 0.5}}])
+    # The light turned -90 degrees about +X (its -Z to -Y); the camera 20 degrees down.
+    down = math.radians(-20.0) / 2
+    g["nodes"] = [{"mesh": 0}, {"mesh": 1},
+                  light_node(0, translation=[0.0, 3.0, 0.0], rotation=[-s, 0.0, 0.0, s]),
+                  {"camera": 0, "translation": [0.0, 2.2, 5.5],
+                   "rotation": [math.sin(down), 0.0, 0.0, math.cos(down)]}]
+    g["scenes"] = [{"nodes": [0, 1, 2, 3]}]
+    g["scene"] = 0
+    b.write_into(g)
+    save("alpha_mask.gltf", g)
 
 
 def bad_files():
@@ -343,5 +399,6 @@ if __name__ == "__main__":
     strip_fan()
     mirrored()
     textured()
+    alpha_mask()
     bad_files()
     draco_grid()
