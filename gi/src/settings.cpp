@@ -24,8 +24,9 @@ std::string validateSettings(const Settings& s) {
   const uint32_t maxCount = s.maxVsglCount ? s.maxVsglCount : s.vsglCount;
   if (!pow2In(s.rsmSize, 16, 2048))
     return field("rsmSize", std::to_string(s.rsmSize), "is not a power of two in [16, 2048]");
-  if (maxCount < 1 || maxCount > 65535)
-    return field("maxVsglCount", std::to_string(maxCount), "is outside [1, 65535]");
+  if (maxCount < 1 || maxCount > kMaxVsglCount)
+    return field("maxVsglCount", std::to_string(maxCount),
+                 ("is outside [1, " + std::to_string(kMaxVsglCount) + "]").c_str());
   if (s.vsglCount < 1 || s.vsglCount > maxCount)
     return field("vsglCount", std::to_string(s.vsglCount),
                  ("is outside [1, maxVsglCount = " + std::to_string(maxCount) + "]").c_str());

@@ -59,7 +59,7 @@ const char* usage() {
          "                  modified-full, modified-culled, modified-full-culled,\n"
          "                  modified-sg-emitter, modified-full-sg-emitter, kmeans-2d, kmeans-3d,\n"
          "                  vpl (the GPU VPL baseline)\n"
-         "  --counts LIST   comma-separated VSGL counts, 1..65535, instead of the preset's\n"
+         "  --counts LIST   comma-separated VSGL counts, 1..32768, instead of the preset's\n"
          "  --width N --height N  image size, 1..8192, instead of the preset's (the path-traced\n"
          "                  reference's cost grows with the pixel count)\n" SAMPLES_LIGHT_USAGE
              SAMPLES_CAMERA_USAGE
@@ -92,7 +92,7 @@ Options parseOptions(int argc, char** argv) {
                               "modified-full-culled, modified-sg-emitter, "
                               "modified-full-sg-emitter, kmeans-2d, kmeans-3d, vpl");
     } else if (arg == "--counts")
-      o.counts = samples::parseUintList(arg, args.value(), 1, 65535);
+      o.counts = samples::parseUintList(arg, args.value(), 1, gi::kMaxVsglCount);
     else if (arg == "--width")
       o.width = samples::parseUint(arg, args.value(), 1, 8192);
     else if (arg == "--height")

@@ -66,7 +66,7 @@ const char* usage() {
          "orbit)\n" SAMPLES_LIGHT_USAGE SAMPLES_CAMERA_USAGE
          "  --frames N         frames in the sequence, 2..1000 (default 16)\n"
          "  --width N --height N  image size, 1..4096 (default 160x90)\n"
-         "  --count N          VSGLs, 1..65535 (default 128)\n"
+         "  --count N          VSGLs, 1..32768 (default 128)\n"
          "  --warmup N         frames of the first frame each method renders first, 0..1000\n"
          "                     (default 64: k-means converges from its seeds)\n"
          "  --block N          the image flicker compares N x N pixel block means, 1..64 (1 =\n"
@@ -106,7 +106,7 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--height")
       o.height = samples::parseUint(arg, args.value(), 1, 4096);
     else if (arg == "--count")
-      o.count = samples::parseUint(arg, args.value(), 1, 65535);
+      o.count = samples::parseUint(arg, args.value(), 1, gi::kMaxVsglCount);
     else if (arg == "--warmup")
       o.warmup = samples::parseUint(arg, args.value(), 0, 1000);
     else if (arg == "--block")

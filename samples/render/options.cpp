@@ -44,7 +44,7 @@ const char* usage() {
          "  --kmeans-weights W   pdf (default) or uniform texel weights in the k-means centres\n"
          "  --kmeans-fresh       seed k-means afresh each frame (default: previous centres)\n"
          "  --pdf NAME           brsm (view-dependent, default) or flux\n"
-         "  --count N            VSGLs per frame, 1..65535 (default 128; the paper: 1024)\n"
+         "  --count N            VSGLs per frame, 1..32768 (default 128; the paper: 1024)\n"
          "  --k K                kernel mass K/N, 1..N (default 1)\n"
          "  --rsm N              RSM side, a power of two in 16..2048 (default 256)\n"
          "  --ism on|off         imperfect-shadow-map visibility (default on)\n"
@@ -149,7 +149,7 @@ Options parseOptions(int argc, char** argv) {
       o.gi.pdf = parseChoice<gi::PdfKind>(
           arg, args.value(), {{"brsm", gi::PdfKind::Brsm}, {"flux", gi::PdfKind::Flux}});
     else if (arg == "--count")
-      o.gi.vsglCount = parseUint(arg, args.value(), 1, 65535);
+      o.gi.vsglCount = parseUint(arg, args.value(), 1, gi::kMaxVsglCount);
     else if (arg == "--k")
       o.gi.kernelScale = parseFloat(arg, args.value(), 1.0f, 65536.0f);
     else if (arg == "--rsm")

@@ -57,7 +57,7 @@ const char* usage() {
          "  --frames N     timed frames per rule, alternating rules, 1..100 (default 5)\n"
          "  --k K          kernel scale K in [1, N]: kernels hold K/N of the PDF (default 1)\n"
          "  --pdf KIND     brsm (view-dependent, from the scene camera) or flux (default brsm)\n"
-         "  --importance N importance VSGLs from the camera, 1..65536 (default 2048)\n"
+         "  --importance N importance VSGLs from the camera, 1..16384 (default 2048)\n"
          "  --brsm-grid N  cells per side of the BRSM evaluation, a power of two <= RSM (default "
          "32)\n"
          "  --flux-mix E   share of the flux PDF mixed into the BRSM PDF, (0, 1] (default 0.1)\n"
@@ -86,7 +86,8 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--pdf")
       o.brsm = samples::parseChoice<bool>(arg, args.value(), {{"brsm", true}, {"flux", false}});
     else if (arg == "--importance")
-      o.brsmSettings.importanceCount = samples::parseUint(arg, args.value(), 1, 65536);
+      o.brsmSettings.importanceCount =
+          samples::parseUint(arg, args.value(), 1, gi::kMaxImportanceCount);
     else if (arg == "--brsm-grid")
       o.brsmSettings.gridSize = samples::parseUint(arg, args.value(), 1, 2048);
     else if (arg == "--flux-mix")

@@ -9,6 +9,11 @@
 // projection (the splat) defines ISM_FRAME_ONLY before including and declares no atlas.
 #ifndef SHADERS_COMMON_ISM_LOOKUP_GLSL
 #define SHADERS_COMMON_ISM_LOOKUP_GLSL
+// The includer may fix the PCF mode at compile time by defining ISM_LOOKUP_PCF (for example as a
+// specialization constant); otherwise ismVisibility reads it from its IsmParams.
+#ifndef ISM_LOOKUP_PCF
+#define ISM_LOOKUP_PCF params.pcf
+#endif
 
 #include "shared/ism.h"
 #include "shared/vsgl.h"
@@ -120,10 +125,13 @@ float ismVisibility(IsmParams params, IsmFrame f, uint vsglIndex, vec3 position,
   ivec2 origin = ismTileOrigin(params, vsglIndex);
   // PCF (ISM_PCF_*) as one loop over taps x taps texels from `first`, weights by selects: no
   // branch on the mode, since llvmpipe runs both sides of a branch under masks but a loop
-  // only as far as it goes.
+  // only as far as it goes. The shading passes fix the mode at compile time (ISM_LOOKUP_PCF, a
+  // specialization constant): the loops then unroll, which keeps a pixel's loop iterations
+  // from growing 10-fold with the VSGL count (lavapipe ends an invocation's loops after 65 535
+  // of them, docs/performance.md).
   vec2 x = uv * float(size) - 0.5;  // texel-centre coordinates
-  bool bilinear = params.pcf == ISM_PCF_BILINEAR;
-  int taps = params.pcf == ISM_PCF_NEAREST ? 1 : (bilinear ? 2 : 3);
+  bool bilinear = ISM_LOOKUP_PCF == ISM_PCF_BILINEAR;
+  int taps = ISM_LOOKUP_PCF == ISM_PCF_NEAREST ? 1 : (bilinear ? 2 : 3);
   ivec2 first = bilinear ? ivec2(floor(x)) : ivec2(uv * float(size)) - taps / 2;
   float sum = 0.0;
   for (int j = 0; j < taps; ++j) {

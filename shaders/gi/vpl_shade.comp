@@ -40,6 +40,9 @@ layout(std430, binding = 8) readonly buffer SgGgxAlbedoTable { vec2 kSgGgxAlbedo
 layout(push_constant) uniform Push { VsglShadePush pc; };
 layout(constant_id = 0) const uint kFlags = VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY;
 
+// The ISM filter (IsmParams::pcf) as a compile-time constant: ism_lookup.glsl's tap loops unroll.
+layout(constant_id = 1) const uint kPcf = ISM_PCF_BILINEAR;
+#define ISM_LOOKUP_PCF kPcf
 #include "common/ism_lookup.glsl"
 #include "common/ism_broadcast.glsl"
 #include "common/vsgl_emitter.glsl"

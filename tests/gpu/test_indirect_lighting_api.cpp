@@ -231,6 +231,16 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   settings.kmeans.iterations = 0;
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
   EXPECT_EQ(status.message, "Settings.kmeans.iterations: 0 is outside [1, 64]");
+  // Past these counts lavapipe would end the shading and BRSM loops early (settings.h).
+  settings = smallSettings();
+  settings.maxVsglCount = gi::kMaxVsglCount + 1;
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message, "Settings.maxVsglCount: 32769 is outside [1, 32768]");
+  settings = smallSettings();
+  settings.brsm.importanceCount = gi::kMaxImportanceCount + 1;
+  EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
+  EXPECT_EQ(status.message,
+            "Settings.brsm: BRSM importanceCount 16385 is outside [1, 16384]");
   settings = smallSettings();
   settings.adaptive.coarsestLevel = 4;
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));

@@ -56,7 +56,7 @@ class VsglShadeTest : public testing_gpu::GpuTest {
     buffer.upload(ctx(), vsgls.data(), vsgls.size() * sizeof(gpu::Vsgl));
     gi::Ism ism(ctx(), ismSettings_, count);
     gi::VsglShade pass(ctx());
-    gi::IndirectImages out = gi::createIndirectImages(ctx(), kWidth, kHeight);
+    gi::IndirectImages out = gi::createIndirectImages(ctx(), gbuffer_->width, gbuffer_->height);
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
       ism.recordPoints(cmd, *gpuScene_);
       ism.recordBuild(cmd, *gpuScene_, buffer, count);
@@ -280,6 +280,40 @@ TEST_F(VsglShadeTest, MatchesReference) {
       for (const glm::vec4& g : gpu.glossy) EXPECT_EQ(glm::vec3(g), glm::vec3(0.0f));
     }
   }
+}
+
+// The largest VSGL count (gi::kMaxVsglCount) is shaded whole: lavapipe ends an invocation's
+// loops after 65 535 iterations, and the shading loop once ran about ten per VSGL (the ISM
+// filter's tap loops), so it stopped near 6 000 VSGLs. Pool subsets repeat every pointCount /
+// pointsPerVsgl VSGLs, so 32 768 copies of one VSGL at 1 / 32 768 of its power see the same
+// visibilities as 64 copies at 1 / 64, and must shade the same light, up to fp32 summation
+// (1e-3 of the value, and 1e-6 of the image's largest for the dark pixels). Box 3 x 3 PCF, the
+// filter with the most taps, and the glossy term; a 12 x 8 G-buffer keeps it to seconds.
+TEST_F(VsglShadeTest, TheLargestCountIsShadedWhole) {
+  const gpu::Vsgl one = hardCaseVsgls(scene_, receiver(kWidth / 2, kHeight / 2)).front();
+  view_ = engine::cameraView(scene_.cameras.at(0), 12, 8);
+  gbuffer_ = std::make_unique<engine::GBuffer>(renderGBuffer(*gpuScene_, view_));
+  ismSettings_ = {16, 1u << 14, 256};
+  ismSettings_.pcf = gi::IsmBox3;
+  auto copies = [&](uint32_t n) {
+    gpu::Vsgl v = one;
+    v.diffuse.power /= float(n);
+    v.specular.power /= float(n);
+    return std::vector<gpu::Vsgl>(n, v);
+  };
+  const uint32_t flags = VSGL_SHADE_GLOSSY | VSGL_SHADE_VISIBILITY | VSGL_SHADE_PLANAR;
+  const Shaded few = shade(copies(64), flags);
+  const Shaded all = shade(copies(gi::kMaxVsglCount), flags);
+  float largest = 0.0f;
+  for (const glm::vec4& c : few.diffuse) largest = std::max({largest, c.r, c.g, c.b});
+  ASSERT_GT(largest, 0.0f);
+  for (size_t i = 0; i < few.diffuse.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(all.diffuse[i][k], few.diffuse[i][k], 1e-3f * few.diffuse[i][k] + 1e-6f * largest)
+          << "pixel " << i;
+      EXPECT_NEAR(all.glossy[i][k], few.glossy[i][k], 1e-3f * few.glossy[i][k] + 1e-6f * largest)
+          << "pixel " << i;
+    }
 }
 
 // KHR_materials_specular's strength s scales a dielectric's F0 and F90 alike, so the glossy

@@ -9,6 +9,14 @@
 
 namespace gi {
 
+// The largest VSGL count (Settings::maxVsglCount) and importance-VSGL count
+// (BrsmSettings::importanceCount). A shading pass's invocation runs a loop iteration per VSGL
+// (and the BRSM evaluation two per importance VSGL, one per lobe), and lavapipe ends an
+// invocation's loops silently after 65 535 iterations in all (docs/performance.md): measured on
+// it, shading reached about 50 000 VSGLs of 65 535 and lost the rest. These bounds leave room.
+constexpr uint32_t kMaxVsglCount = 32768;
+constexpr uint32_t kMaxImportanceCount = 16384;
+
 // How each VSGL's filter kernel is sized (vsgl-math.md section 5).
 enum class KernelRule : uint32_t {
   Tok15 = 0,     // Tokuyoshi 2015: mip level from the PDF at the kernel centre
@@ -48,7 +56,8 @@ enum class PdfKind : uint32_t {
 };
 
 struct BrsmSettings {
-  // Creation. Importance VSGLs generated from the camera G-buffer, [1, 65536] ([S3]: 2048).
+  // Creation. Importance VSGLs generated from the camera G-buffer, [1, kMaxImportanceCount]
+  // ([S3]: 2048).
   // Cost: stage B is linear in it (cells x count x 4 SG inner products).
   uint32_t importanceCount = 2048;
   // Creation. Cells per side of the stage-B grid, a power of two in [1, rsmSize]; rsmSize makes
@@ -197,7 +206,7 @@ struct Settings {
   // per-view passes, BRSM evaluation included (measured 5.7x, 48 -> 273 ms at 256^2 on lavapipe;
   // docs/techniques/point-lights.md).
   uint32_t rsmSize = 256;
-  // Creation. Largest VSGL count this instance will be asked for, [1, 65535]; sizes the VSGL
+  // Creation. Largest VSGL count this instance will be asked for, [1, kMaxVsglCount]; sizes the VSGL
   // buffer and the ISM atlas. 0 = vsglCount.
   uint32_t maxVsglCount = 0;
   // VSGLs per frame N, [1, maxVsglCount] ([S3]: 1024). Cost ~ N x pixels in shading (the

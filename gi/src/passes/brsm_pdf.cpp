@@ -18,9 +18,9 @@ uint32_t log2Exact(uint32_t powerOfTwo) {
 }  // namespace
 
 void validateBrsmSettings(const BrsmSettings& settings, uint32_t rsmSize) {
-  if (settings.importanceCount < 1 || settings.importanceCount > 65536)
+  if (settings.importanceCount < 1 || settings.importanceCount > kMaxImportanceCount)
     throw engine::Error("BRSM importanceCount " + std::to_string(settings.importanceCount) +
-                        " is outside [1, 65536]");
+                        " is outside [1, " + std::to_string(kMaxImportanceCount) + "]");
   if (!std::has_single_bit(settings.gridSize) || settings.gridSize > rsmSize)
     throw engine::Error("BRSM gridSize " + std::to_string(settings.gridSize) +
                         " is not a power of two in [1, RSM size " + std::to_string(rsmSize) + "]");

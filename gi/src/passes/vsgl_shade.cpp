@@ -53,9 +53,11 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
     throw engine::Error("VPL shading: neither adaptive queues nor culling apply to point lights");
   // vpl_shade.comp's emitters are always planar: one variant serves both values of the flag.
   const uint32_t variant = in.points ? in.flags & ~VSGL_SHADE_PLANAR : in.flags;
-  std::optional<engine::ComputeProgram>& program = programs_[in.points][variant];
+  if (in.ism.pcf > ISM_MAX_PCF)
+    throw engine::Error("VSGL shading: unknown ISM filter " + std::to_string(in.ism.pcf));
+  std::optional<engine::ComputeProgram>& program = programs_[in.points][in.ism.pcf][variant];
   if (!program) {
-    const uint32_t specialization[] = {variant};
+    const uint32_t specialization[] = {variant, in.ism.pcf};
     const std::span<const uint32_t> spirv = in.points ? std::span<const uint32_t>(kVplShadeSpv)
                                                       : std::span<const uint32_t>(kVsglShadeSpv);
     program.emplace(*ctx_, in.points ? "vpl_shade" : "vsgl_shade", spirv,

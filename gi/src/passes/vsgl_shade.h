@@ -45,8 +45,8 @@ class VsglShade {
   };
 
   // `camera`: the G-buffer camera's view (positions are rebuilt relative to its eye,
-  // engine::relativeUnprojection). The first record with a given `in.flags` compiles that
-  // variant of the pass (see VSGL_SHADE_VARIANTS).
+  // engine::relativeUnprojection). The first record with a given `in.flags` and ISM filter
+  // (`in.ism.pcf`) compiles that variant of the pass (see VSGL_SHADE_VARIANTS).
   void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,
               const Inputs& in, IndirectImages& out, engine::GpuProfiler* profiler = nullptr);
 
@@ -58,8 +58,9 @@ class VsglShade {
 
  private:
   engine::Context* ctx_;
-  // [points][flags], each compiled at its first record.
-  std::array<std::array<std::optional<engine::ComputeProgram>, VSGL_SHADE_VARIANTS>, 2> programs_;
+  // [points][ISM filter][flags], each compiled at its first record.
+  using Variants = std::array<std::optional<engine::ComputeProgram>, VSGL_SHADE_VARIANTS>;
+  std::array<std::array<Variants, ISM_MAX_PCF + 1>, 2> programs_;
   engine::Buffer albedoTable_;  // vec2[17 x 17], gi::ggxSpecularAlbedoNode (sg_lighting.glsl)
   engine::Buffer noQueue_;      // bound as the queue by the variants that do not read one
   engine::Buffer stats_;        // gpu::VsglShadeStats, written by VSGL_SHADE_CULL
