@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 namespace engine {
 namespace {
@@ -11,6 +12,9 @@ namespace {
 // Reinhard, Stark, Shirley, Ferwerda, "Photographic Tone Reproduction for Digital Images"
 // (SIGGRAPH 2002): the log-average luminance is mapped to the "key" 0.18, middle grey.
 constexpr double kMiddleGrey = 0.18;
+// Auto-exposure leaves out pixels this many stops below the image's 99th-percentile luminance:
+// the curve maps them to under 1/1000 of white once the rest is exposed (exposureScale).
+constexpr float kDarkStops = 12.0f;
 
 // Rec. ITU-R BT.709 luminance weights for linear RGB with the sRGB/Rec.709 primaries.
 constexpr float kLuminanceR = 0.2126f;
@@ -41,19 +45,29 @@ uint8_t toUnorm8(float x) {
 float exposureScale(const ImageRgba32f& image, const ToneMapSettings& settings) {
   if (settings.exposureEv) return std::exp2(*settings.exposureEv);
 
-  // Black (lum = 0) pixels are skipped because log(0) = -inf would drag the average to zero;
-  // the sum is in double so a large image does not lose the small terms.
-  double logSum = 0.0;
-  size_t count = 0;
+  // Black (lum = 0) pixels are skipped because log(0) = -inf would drag the average to zero.
+  std::vector<float> lit;
   for (size_t i = 0; i + 3 < image.pixels.size(); i += 4) {
     const float lum = luminance(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
-    if (std::isfinite(lum) && lum > 0.0f) {
+    if (std::isfinite(lum) && lum > 0.0f) lit.push_back(lum);
+  }
+  // Nothing lit: any scale gives black, so leave the radiance as it is.
+  if (lit.empty()) return 1.0f;
+  // So are pixels more than kDarkStops below the bright end (the 99th percentile): a frame that
+  // is mostly near-black, a spot's pool of light in a dark room with faint indirect light around,
+  // would otherwise be exposed for the near-black and burn the lit part white.
+  std::vector<float> sorted = lit;
+  const auto p99 = sorted.begin() + static_cast<std::ptrdiff_t>((sorted.size() - 1) * 99 / 100);
+  std::nth_element(sorted.begin(), p99, sorted.end());
+  const float darkest = *p99 * std::exp2(-kDarkStops);
+  // The sum is in double so a large image does not lose the small terms.
+  double logSum = 0.0;
+  size_t count = 0;
+  for (const float lum : lit)
+    if (lum >= darkest) {
       logSum += std::log(static_cast<double>(lum));
       ++count;
     }
-  }
-  // Nothing lit: any scale gives black, so leave the radiance as it is.
-  if (count == 0) return 1.0f;
   return static_cast<float>(kMiddleGrey / std::exp(logSum / static_cast<double>(count)));
 }
 

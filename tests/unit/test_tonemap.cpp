@@ -89,6 +89,22 @@ TEST(ToneMap, AutoExposureIgnoresBlackAndNonFinitePixels) {
   EXPECT_NEAR(engine::exposureScale(image, {}), 0.06f, 0.06f * 1e-6f);
 }
 
+// A spot's pool of light in a dark room: 1 pixel in 5 at luminance 1, the rest 20 stops darker
+// (faint indirect light). Exposed for the log-average of all five the pool would be scaled by
+// 0.18 / 2^-16 and burn white; the near-black ones are left out, so the pool maps to middle grey.
+TEST(ToneMap, AutoExposureLeavesOutTheNearBlack) {
+  engine::ImageRgba32f image = constantImage(10, 10, 0x1p-20f, 0x1p-20f, 0x1p-20f);
+  for (size_t p = 0; p < 100; p += 5)
+    for (int c = 0; c < 3; ++c) image.pixels[4 * p + c] = 1.0f;
+  EXPECT_NEAR(engine::exposureScale(image, {}), 0.18f, 0.18f * 1e-6f);
+  // Within 12 stops of the bright end a dark pixel still counts: 2^-10 for the others gives the
+  // log-average 2^-8 and the scale 0.18 x 2^8.
+  for (size_t p = 0; p < 100; ++p)
+    if (p % 5 != 0)
+      for (int c = 0; c < 3; ++c) image.pixels[4 * p + c] = 0x1p-10f;
+  EXPECT_NEAR(engine::exposureScale(image, {}), 0.18f * 256.0f, 0.18f * 256.0f * 1e-5f);
+}
+
 TEST(ToneMap, NonFinitePixelsBecomeMagenta) {
   engine::ImageRgba32f image = constantImage(3, 1, 0.2f, 0.2f, 0.2f);
   image.pixels[1] = std::numeric_limits<float>::quiet_NaN();

@@ -12,7 +12,8 @@ namespace engine {
 
 struct ToneMapSettings {
   // Exposure in stops. When empty, auto-exposure maps the log-average luminance of the lit
-  // pixels (luminance > 0) to middle grey 0.18 (Reinhard et al. 2002's "key").
+  // pixels (luminance > 0, and within 12 stops of the image's 99th percentile) to middle grey
+  // 0.18 (Reinhard et al. 2002's "key").
   std::optional<float> exposureEv;
 };
 
