@@ -14,6 +14,7 @@ packages=(
   libopenimageio-dev                      # EXR / PNG / texture I/O
   libembree-dev                           # ray tracing for the CPU ground truth (gi/truth)
   gnuplot-nox                             # the benchmark's charts (scripts/bench_charts.sh)
+  time                                    # peak memory in scripts/load_bench.sh
   libgtest-dev                            # tests
 )
 
