@@ -47,7 +47,7 @@ void GBufferResolve::record(VkCommandBuffer cmd, const SceneGpu& scene, const Bu
                             BackFaces backFaces) {
   ProfileScope scope(profiler, cmd, "gbuffer resolve");
   gpu::GBufferResolvePush push{
-      view.invViewProj, {g.width, g.height}, static_cast<uint32_t>(backFaces), 0};
+      view.invViewProj, {g.width, g.height}, static_cast<uint32_t>(backFaces), scene.materialCount};
   program_.dispatch(
       cmd,
       {Binding::storage(visibility), Binding::storage(scene.vertices),

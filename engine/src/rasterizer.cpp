@@ -91,7 +91,11 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
                               glm::vec4(transform.origin, 0.0f),
                               {target.width, target.height},
                               scene.triangleCount,
-                              capacity_};
+                              capacity_,
+                              scene.vertexCount,
+                              0,
+                              0,
+                              0};
     setup_.dispatch(cmd,
                     {Binding::storage(scene.vertices), Binding::storage(scene.indices),
                      Binding::storage(triangles_), Binding::storage(counters_),
@@ -105,7 +109,7 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
                                   glm::vec4(transform.origin, 0.0f),
                                   {target.width, target.height},
                                   capacity_,
-                                  0};
+                                  scene.materialCount};
     (scene.alphaCutouts ? alphaCoverage_ : coverage_)
         .dispatchIndirect(cmd,
                           {Binding::storage(triangles_), Binding::storage(counters_),

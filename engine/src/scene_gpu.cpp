@@ -117,6 +117,8 @@ int packedTextureSize(const Scene& scene) {
 SceneGpu uploadScene(Context& ctx, const Scene& scene) {
   SceneGpu gpu;
   gpu.triangleCount = scene.triangleCount();
+  gpu.vertexCount = static_cast<uint32_t>(scene.positions.size());
+  gpu.materialCount = static_cast<uint32_t>(scene.materials.size());
 
   std::vector<gpu::SceneVertex> vertices(scene.positions.size());
   for (size_t i = 0; i < vertices.size(); ++i) {

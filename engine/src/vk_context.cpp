@@ -72,6 +72,47 @@ std::string missingSubgroupOperations(VkPhysicalDevice device) {
   return {};
 }
 
+// The first device feature the module needs that `features` (a VkPhysicalDeviceFeatures2 chain,
+// as queried or as given to vkCreateDevice) lacks: shaderInt64 and shaderBufferInt64Atomics (the
+// rasterizer's 64-bit atomics), synchronization2 and maintenance4; empty when none. The Vulkan
+// 1.2/1.3 structs and the individual feature structs are both read.
+std::string missingFeature(const VkPhysicalDeviceFeatures2& features) {
+  bool int64Atomics = false, synchronization2 = false, maintenance4 = false;
+  for (auto* s = static_cast<const VkBaseInStructure*>(features.pNext); s; s = s->pNext) {
+    switch (s->sType) {
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES:
+        int64Atomics |= reinterpret_cast<const VkPhysicalDeviceVulkan12Features*>(s)
+                            ->shaderBufferInt64Atomics == VK_TRUE;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES:
+        int64Atomics |= reinterpret_cast<const VkPhysicalDeviceShaderAtomicInt64Features*>(s)
+                            ->shaderBufferInt64Atomics == VK_TRUE;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
+        const auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s);
+        synchronization2 |= f->synchronization2 == VK_TRUE;
+        maintenance4 |= f->maintenance4 == VK_TRUE;
+        break;
+      }
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
+        synchronization2 |= reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(s)
+                                ->synchronization2 == VK_TRUE;
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
+        maintenance4 |= reinterpret_cast<const VkPhysicalDeviceMaintenance4Features*>(s)
+                            ->maintenance4 == VK_TRUE;
+        break;
+      default:
+        break;
+    }
+  }
+  if (!features.features.shaderInt64) return "shaderInt64";
+  if (!int64Atomics) return "shaderBufferInt64Atomics";
+  if (!synchronization2) return "synchronization2";
+  if (!maintenance4) return "maintenance4";
+  return {};
+}
+
 // Everything the module relies on; a device lacking any of it is listed with the reason.
 std::string unsuitableReason(VkPhysicalDevice device, uint32_t* queueFamily) {
   VkPhysicalDeviceProperties props;
@@ -106,10 +147,7 @@ std::string unsuitableReason(VkPhysicalDevice device, uint32_t* queueFamily) {
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   f2.pNext = &f12;
   vkGetPhysicalDeviceFeatures2(device, &f2);
-  if (!f2.features.shaderInt64) return "shaderInt64 missing";
-  if (!f12.shaderBufferInt64Atomics) return "shaderBufferInt64Atomics missing (rasterizer)";
-  if (!f13.synchronization2) return "synchronization2 missing";
-  if (!f13.maintenance4) return "maintenance4 missing";
+  if (std::string missing = missingFeature(f2); !missing.empty()) return missing + " missing";
   return {};
 }
 
@@ -311,6 +349,22 @@ Context::Context(const ExternalDevice& external) : borrowed_(true) {
     throw Error("ExternalDevice: '" + info_.name + "' is not a Vulkan 1.3 device");
   if (std::string missing = missingSubgroupOperations(physicalDevice_); !missing.empty())
     throw Error("ExternalDevice: '" + info_.name + "' has " + missing);
+  // Vulkan cannot say which features a device was created with: the host's chain when given,
+  // else what the physical device supports.
+  if (external.enabledFeatures) {
+    if (std::string missing = missingFeature(*external.enabledFeatures); !missing.empty())
+      throw Error("ExternalDevice: " + missing +
+                  " is not enabled in the device's features (DeviceHandles::enabledFeatures)");
+  } else {
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    f12.pNext = &f13;
+    VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    supported.pNext = &f12;
+    vkGetPhysicalDeviceFeatures2(physicalDevice_, &supported);
+    if (std::string missing = missingFeature(supported); !missing.empty())
+      throw Error("ExternalDevice: '" + info_.name + "' does not support " + missing);
+  }
   cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
   if (!cmdPushDescriptorSet)

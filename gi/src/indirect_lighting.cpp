@@ -13,6 +13,7 @@
 #include "engine/commands.h"
 #include "engine/rasterizer.h"
 #include "light_validation.h"
+#include "shared/scene_data.h"
 #include "passes/adaptive_shading.h"
 #include "passes/brsm_pdf.h"
 #include "passes/env_fis.h"
@@ -118,7 +119,8 @@ struct LightView {
 
 struct IndirectLighting::Impl {
   Impl(const DeviceHandles& device, const Settings& s, uint32_t w, uint32_t h)
-      : ctx({device.instance, device.physicalDevice, device.device, device.queueFamily}),
+      : ctx({device.instance, device.physicalDevice, device.device, device.queueFamily,
+             device.enabledFeatures}),
         settings(s),
         maxCount(s.maxVsglCount ? s.maxVsglCount : s.vsglCount),
         width(w),
@@ -536,15 +538,60 @@ std::unique_ptr<IndirectLighting> IndirectLighting::create(const DeviceHandles& 
   return lighting;
 }
 
+namespace {
+
+// A buffer of `bytes` that must hold `count` elements of `size` bytes; empty when it does.
+std::string bufferTooSmall(const char* field, VkDeviceSize bytes, uint64_t count, uint64_t size,
+                           const char* counted) {
+  if (bytes >= count * size) return {};
+  return std::string("SceneGeometry.") + field + ": " + std::to_string(bytes) + " bytes, " +
+         std::to_string(count) + " " + counted + " need " + std::to_string(count * size);
+}
+
+// The first value of `data` (`perTriangle` per triangle) at or past `limit`, named.
+std::string outOfRange(const char* field, std::span<const uint32_t> data, uint32_t perTriangle,
+                       uint32_t triangles, uint32_t limit, const char* what, const char* count) {
+  if (data.empty()) return {};
+  if (data.size() != uint64_t{triangles} * perTriangle)
+    return std::string("SceneGeometry.") + field + ": " + std::to_string(data.size()) +
+           " values, " + std::to_string(triangles) + " triangles need " +
+           std::to_string(uint64_t{triangles} * perTriangle);
+  for (size_t i = 0; i < data.size(); ++i)
+    if (data[i] >= limit)
+      return std::string("SceneGeometry.") + field + ": triangle " +
+             std::to_string(i / perTriangle) + " names " + what + " " + std::to_string(data[i]) +
+             ", past " + count + " " + std::to_string(limit);
+  return {};
+}
+
+// setScene's checks of the host's buffers, in the order a reader meets the fields.
+std::string validateGeometry(const SceneGeometry& s) {
+  if (s.triangleCount == 0) return "SceneGeometry.triangleCount: 0 (nothing to light)";
+  if (s.vertexCount == 0) return "SceneGeometry.vertexCount: 0 (the vertices' count is needed)";
+  if (s.materialCount == 0) return "SceneGeometry.materialCount: 0 (the materials' count is needed)";
+  for (const std::string& bad :
+       {bufferTooSmall("vertexBytes", s.vertexBytes, s.vertexCount, sizeof(gpu::SceneVertex),
+                       "vertices"),
+        bufferTooSmall("indexBytes", s.indexBytes, s.triangleCount, 12, "triangles"),
+        bufferTooSmall("triangleMaterialBytes", s.triangleMaterialBytes, s.triangleCount, 4,
+                       "triangles"),
+        bufferTooSmall("materialBytes", s.materialBytes, s.materialCount,
+                       sizeof(gpu::SceneMaterial), "materials"),
+        outOfRange("indexData", s.indexData, 3, s.triangleCount, s.vertexCount, "vertex",
+                   "vertexCount"),
+        outOfRange("triangleMaterialData", s.triangleMaterialData, 1, s.triangleCount,
+                   s.materialCount, "material", "materialCount")})
+    if (!bad.empty()) return bad;
+  return {};
+}
+
+}  // namespace
+
 Status IndirectLighting::setScene(const SceneGeometry& s) {
   if (!s.vertices || !s.indices || !s.triangleMaterials || !s.materials || !s.baseColorTextures ||
       !s.dataTextures || !s.sampler)
     return failure("SceneGeometry: every buffer, texture view and the sampler must be set");
-  if (s.triangleCount == 0) return failure("SceneGeometry.triangleCount: 0 (nothing to light)");
-  if (s.indexBytes < VkDeviceSize{s.triangleCount} * 12 ||
-      s.triangleMaterialBytes < VkDeviceSize{s.triangleCount} * 4)
-    return failure("SceneGeometry: indexBytes or triangleMaterialBytes is smaller than " +
-                   std::to_string(s.triangleCount) + " triangles need");
+  if (std::string bad = validateGeometry(s); !bad.empty()) return failure(bad);
   if (!glm::all(glm::lessThanEqual(s.boundsMin, s.boundsMax)))
     return failure("SceneGeometry.boundsMin: not below boundsMax on every axis");
   if (!(s.maxSpecular >= 0.0f && s.maxSpecular <= 1.0f))
@@ -566,6 +613,8 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
                                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   scene.sampler = engine::Sampler::borrow(s.sampler);
   scene.triangleCount = s.triangleCount;
+  scene.vertexCount = s.vertexCount;
+  scene.materialCount = s.materialCount;
   scene.alphaCutouts = s.alphaCutouts;
   impl_->scene = std::move(scene);
   impl_->ismPointsStale = true;

@@ -102,6 +102,11 @@ gi::SceneGeometry sceneGeometry(const engine::SceneGpu& gpuScene, const engine::
   geometry.materials = gpuScene.materials.handle();
   geometry.materialBytes = gpuScene.materials.size();
   geometry.triangleCount = gpuScene.triangleCount;
+  geometry.vertexCount = gpuScene.vertexCount;
+  geometry.materialCount = gpuScene.materialCount;
+  // The CPU copies, so that setScene checks every index (the scene outlives the call).
+  geometry.indexData = scene.indices;
+  geometry.triangleMaterialData = scene.triangleMaterial;
   geometry.baseColorTextures = gpuScene.baseColorTextures.view();
   geometry.dataTextures = gpuScene.dataTextures.view();
   geometry.sampler = gpuScene.sampler.handle();

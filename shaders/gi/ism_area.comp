@@ -15,9 +15,14 @@ layout(std430, binding = 2) writeonly buffer Cdf { float cdf[]; };
 layout(push_constant) uniform Push { IsmAreaPush pc; };
 
 void area(uint t) {
-  vec3 a = vertices[indices[3u * t]].positionU.xyz;
-  vec3 b = vertices[indices[3u * t + 1u]].positionU.xyz;
-  vec3 c = vertices[indices[3u * t + 2u]].positionU.xyz;
+  uvec3 corner = uvec3(indices[3u * t], indices[3u * t + 1u], indices[3u * t + 2u]);
+  if (any(greaterThanEqual(corner, uvec3(pc.vertexCount)))) {  // a host's bad index
+    cdf[t] = 0.0;
+    return;
+  }
+  vec3 a = vertices[corner.x].positionU.xyz;
+  vec3 b = vertices[corner.y].positionU.xyz;
+  vec3 c = vertices[corner.z].positionU.xyz;
   cdf[t] = 0.5 * length(cross(b - a, c - a));
 }
 

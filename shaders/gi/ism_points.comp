@@ -31,6 +31,7 @@ layout(push_constant) uniform Push { IsmPointsPush pc; };
 // the point at).
 bool pointKept(uint t, uint bary) {
   uint material = triangleMaterial[t];
+  if (material >= pc.materialCount) return true;  // a host's bad index: not tested
   float cutoff = materials[material].alphaCutoff;
   if (!(cutoff > 0.0)) return true;
   vec4 rowU = materials[material].baseColorUvU, rowV = materials[material].baseColorUvV;

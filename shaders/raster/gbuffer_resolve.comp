@@ -109,6 +109,15 @@ void main() {
 
   vec3 normal = normalize(nA.xyz * (1.0 - bc.x - bc.y) + nB.xyz * bc.x + nC.xyz * bc.y);
   uint material = triangleMaterial[tri];
+  // A host's material index past its buffer: no reflectance (the surface still has its depth).
+  if (material >= pc.materialCount) {
+    imageStore(outDepth, coord, vec4(depth));
+    imageStore(outNormal, coord, vec4(octEncode(normal), 0.0, 0.0));
+    imageStore(outDiffuse, coord, vec4(0.0, 0.0, 0.0, 1.0));
+    imageStore(outSpecular, coord, vec4(0.0));
+    imageStore(outEmission, coord, vec4(0.0));
+    return;
+  }
   // The normal map perturbs the front's normal (a back face then shows its negation).
   int normalLayer = materials[material].normalLayer;
   if (normalLayer >= 0) {

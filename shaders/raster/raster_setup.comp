@@ -93,8 +93,10 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint triangleId) {
 void main() {
   uint tri = gl_GlobalInvocationID.x;
   if (tri >= pc.triangleCount) return;
+  uvec3 corner = uvec3(indices[3 * tri], indices[3 * tri + 1], indices[3 * tri + 2]);
+  if (any(greaterThanEqual(corner, uvec3(pc.vertexCount)))) return;  // a host's bad index
   vec4 v[3];
-  for (int i = 0; i < 3; ++i) v[i] = toClip(vertices[indices[3 * tri + i]].positionU.xyz);
+  for (int i = 0; i < 3; ++i) v[i] = toClip(vertices[corner[i]].positionU.xyz);
 
   // Trivial reject against the real frustum (not the guard band): all outside one plane.
   for (int axis = 0; axis < 2; ++axis) {

@@ -84,6 +84,7 @@ vec3 crossExact(vec3 a, vec3 b) {
 void stageCutout(uint lane, uint tri) {
   sCutout[lane] = vec4(0.0);
   uint material = triangleMaterial[tri];
+  if (material >= pc.materialCount) return;  // a host's bad index: not tested
   float cutoff = materials[material].alphaCutoff;
   if (!(cutoff > 0.0)) return;
   vec4 rowU = materials[material].baseColorUvU, rowV = materials[material].baseColorUvV;

@@ -23,7 +23,7 @@ struct GBufferResolvePush {
   // engine::BackFaces: 0 = every triangle seen from behind shades as its front (camera views);
   // 1 = a single-sided material's back face reflects nothing (light views: the RSM).
   uint backFaces;
-  uint pad1;
+  uint materialCount;  // a triangle naming a material at or past it reflects nothing
 };
 
 SHARED_END

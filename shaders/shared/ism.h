@@ -90,15 +90,15 @@ struct IsmParams {
 
 struct IsmAreaPush {
   uint triangleCount;
-  uint pad0;
+  uint vertexCount;  // a triangle naming a vertex at or past it gets no area (no points)
   uint pad1;
   uint pad2;
 };
 
 struct IsmPointsPush {
   uint triangleCount;
-  uint pointCount;  // P
-  uint pad0;
+  uint pointCount;     // P
+  uint materialCount;  // a material index at or past it is not alpha-tested
   uint pad1;
 };
 

@@ -64,6 +64,10 @@ struct RasterSetupPush {
   uvec2 viewport;      // pixels
   uint triangleCount;  // source triangles
   uint capacity;       // RasterTriangle entries available
+  uint vertexCount;    // a triangle naming a vertex at or past it is left out
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 struct RasterTrianglesPush {
@@ -71,7 +75,7 @@ struct RasterTrianglesPush {
   vec4 origin;
   uvec2 viewport;
   uint capacity;
-  uint pad;
+  uint materialCount;  // a material index at or past it is not alpha-tested
 };
 
 SHARED_END
@@ -80,6 +84,6 @@ SHARED_ASSERT_SIZE(RasterTriangle, 48);
 SHARED_ASSERT_OFFSET(RasterTriangle, bboxMin, 24);
 SHARED_ASSERT_OFFSET(RasterTriangle, z0, 32);
 SHARED_ASSERT_SIZE(RasterCounters, 32);
-SHARED_ASSERT_SIZE(RasterSetupPush, 96);
+SHARED_ASSERT_SIZE(RasterSetupPush, 112);
 SHARED_ASSERT_SIZE(RasterTrianglesPush, 96);
 #endif

@@ -28,6 +28,9 @@ int main() try {
   g.triangleMaterials = triangleMaterials.buffer, g.triangleMaterialBytes = triangleMaterials.size;
   g.materials = materials.buffer, g.materialBytes = materials.size;
   g.triangleCount = static_cast<uint32_t>(room.indices.size() / 3);
+  g.vertexCount = static_cast<uint32_t>(room.vertices.size());
+  g.materialCount = static_cast<uint32_t>(room.materials.size());
+  g.indexData = room.indices, g.triangleMaterialData = room.triangleMaterials;
   // No textures: one white texel each (the materials name no layer).
   const uint8_t white[4] = {255, 255, 255, 255};
   const HostImage colour = host.image(VK_FORMAT_R8G8B8A8_SRGB, 1, 1, VK_IMAGE_USAGE_SAMPLED_BIT, 1, true);

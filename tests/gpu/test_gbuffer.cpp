@@ -241,6 +241,40 @@ double halfCodeStep(int code, bool srgb) {
                         code < 255 ? decode(code + 1) - decode(code) : 1.0);
 }
 
+// A host's bad indices (gi::SceneGeometry without CPU copies to check): a triangle naming a
+// vertex past the buffer is left out by the rasterizer, one naming a material past the buffer
+// keeps its depth and reflects nothing; nothing is read out of bounds, and the good triangle
+// resolves as usual.
+TEST_F(GBufferTest, BadIndicesAreNeverReadOutOfBounds) {
+  engine::Material m;
+  m.baseColorFactor = glm::vec4(0.5f, 0.6f, 0.7f, 1.0f);
+  m.metallicFactor = 0.0f;
+  Scene scene = texturedQuad(makeTexture("white", 1, [](int, int) { return glm::u8vec4(255); }),
+                             makeTexture("white", 1, [](int, int) { return glm::u8vec4(255); }), m);
+  scene.indices.insert(scene.indices.end(), {0, 2, 1000});  // a third triangle, vertex 1000
+  scene.triangleMaterial = {0, 7, 0};                       // material 7 of 1
+  const engine::View view = engine::cameraView(scene.cameras.at(0), kWidth, kHeight);
+  const GpuResolve gpu = resolve(scene, view);
+  size_t good = 0, black = 0;
+  for (size_t i = 0; i < gpu.visibility.size(); ++i) {
+    ASSERT_NE(gpu.visibility[i], ~uint64_t{0}) << "the quad fills the view";
+    const auto triangle = static_cast<uint32_t>(gpu.visibility[i] & 0xFFFFFFFFu);
+    ASSERT_LT(triangle, 2u) << "pixel " << i;
+    const GBufferSample& s = gpu.gbuffer.samples[i];
+    ASSERT_TRUE(std::isfinite(s.depth) && s.depth < 1.0f) << "pixel " << i;
+    if (triangle == 1) {
+      EXPECT_EQ(s.diffuse, glm::dvec3(0.0)) << "pixel " << i;
+      EXPECT_EQ(s.f0, glm::dvec3(0.0)) << "pixel " << i;
+      ++black;
+    } else {
+      EXPECT_TRUE(withinHalf(s.diffuse.g, 0.6)) << "pixel " << i;
+      ++good;
+    }
+  }
+  EXPECT_GT(good, gpu.visibility.size() / 4);
+  EXPECT_GT(black, gpu.visibility.size() / 4);
+}
+
 TEST_F(GBufferTest, BackFacesTurnTheirNormalToTheViewer) {
   // The quad from behind: its front and its vertex normals point to +Z, away from a camera
   // at z = -6 looking towards +Z, so both sides must flip the normal to -Z.

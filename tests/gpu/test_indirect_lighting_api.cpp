@@ -220,6 +220,89 @@ TEST_F(IndirectLightingApiTest, HostRecordsAndComposites) {
   }
 }
 
+// Every kind of bad scene buffer comes back as one Status line naming the field, checked on the
+// CPU before anything reads the buffers.
+TEST_F(IndirectLightingApiTest, SetSceneNamesEachBadBuffer) {
+  gi::Settings settings = smallSettings();
+  gi::Status status;
+  auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+  ASSERT_TRUE(lighting) << status.message;
+  ASSERT_TRUE(lighting->setScene(geometry()));
+  const gi::SceneGeometry good = geometry();
+  std::vector<uint32_t> indices(good.indexData.begin(), good.indexData.end());
+  indices[7] = good.vertexCount;
+  std::vector<uint32_t> materials(good.triangleMaterialData.begin(),
+                                  good.triangleMaterialData.end());
+  materials[5] = good.materialCount + 2;
+  const std::string triangles = std::to_string(good.triangleCount);
+  const std::vector<std::pair<std::function<void(gi::SceneGeometry&)>, std::string>> cases = {
+      {[](gi::SceneGeometry& g) { g.vertexCount = 0; },
+       "SceneGeometry.vertexCount: 0 (the vertices' count is needed)"},
+      {[](gi::SceneGeometry& g) { g.materialCount = 0; },
+       "SceneGeometry.materialCount: 0 (the materials' count is needed)"},
+      {[](gi::SceneGeometry& g) { g.vertexBytes = 64; },
+       "SceneGeometry.vertexBytes: 64 bytes, " + std::to_string(good.vertexCount) +
+           " vertices need " + std::to_string(good.vertexCount * 32)},
+      {[](gi::SceneGeometry& g) { g.indexBytes -= 4; },
+       "SceneGeometry.indexBytes: " + std::to_string(good.indexBytes - 4) + " bytes, " +
+           triangles + " triangles need " + std::to_string(good.triangleCount * 12)},
+      {[](gi::SceneGeometry& g) { g.triangleMaterialBytes = 0; },
+       "SceneGeometry.triangleMaterialBytes: 0 bytes, " + triangles + " triangles need " +
+           std::to_string(good.triangleCount * 4)},
+      {[](gi::SceneGeometry& g) { g.materialCount += 1; },
+       "SceneGeometry.materialBytes: " + std::to_string(good.materialBytes) + " bytes, " +
+           std::to_string(good.materialCount + 1) + " materials need " +
+           std::to_string((good.materialCount + 1) * 224)},
+      {[&](gi::SceneGeometry& g) { g.indexData = indices; },
+       "SceneGeometry.indexData: triangle 2 names vertex " + std::to_string(good.vertexCount) +
+           ", past vertexCount " + std::to_string(good.vertexCount)},
+      {[&](gi::SceneGeometry& g) { g.indexData = g.indexData.first(6); },
+       "SceneGeometry.indexData: 6 values, " + triangles + " triangles need " +
+           std::to_string(good.triangleCount * 3)},
+      {[&](gi::SceneGeometry& g) { g.triangleMaterialData = materials; },
+       "SceneGeometry.triangleMaterialData: triangle 5 names material " +
+           std::to_string(good.materialCount + 2) + ", past materialCount " +
+           std::to_string(good.materialCount)}};
+  for (const auto& [edit, message] : cases) {
+    gi::SceneGeometry bad = good;
+    edit(bad);
+    const gi::Status s = lighting->setScene(bad);
+    EXPECT_FALSE(s);
+    EXPECT_EQ(s.message, message);
+  }
+}
+
+// A device created without a feature the module needs is refused at create, naming it (from the
+// feature chain the host created the device with).
+TEST_F(IndirectLightingApiTest, CreateNamesAMissingDeviceFeature) {
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.synchronization2 = f13.maintenance4 = VK_TRUE;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  f12.pNext = &f13;
+  f12.shaderBufferInt64Atomics = VK_TRUE;
+  VkPhysicalDeviceFeatures2 enabled{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  enabled.pNext = &f12;
+  enabled.features.shaderInt64 = VK_TRUE;
+  gi::DeviceHandles device = handles();
+  device.enabledFeatures = &enabled;
+  gi::Status status;
+  EXPECT_TRUE(gi::IndirectLighting::create(device, smallSettings(), kWidth, kHeight, &status))
+      << status.message;
+  const std::pair<VkBool32*, const char*> features[] = {
+      {&enabled.features.shaderInt64, "shaderInt64"},
+      {&f12.shaderBufferInt64Atomics, "shaderBufferInt64Atomics"},
+      {&f13.synchronization2, "synchronization2"},
+      {&f13.maintenance4, "maintenance4"}};
+  for (const auto& [feature, name] : features) {
+    *feature = VK_FALSE;
+    EXPECT_FALSE(gi::IndirectLighting::create(device, smallSettings(), kWidth, kHeight, &status));
+    EXPECT_EQ(status.message, std::string("ExternalDevice: ") + name +
+                                  " is not enabled in the device's features "
+                                  "(DeviceHandles::enabledFeatures)");
+    *feature = VK_TRUE;
+  }
+}
+
 TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   gi::Settings settings = smallSettings();
   settings.rsmSize = 100;

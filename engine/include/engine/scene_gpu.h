@@ -18,6 +18,11 @@ struct SceneGpu {
   Image dataTextures;        // R8G8B8A8_UNORM array, one layer per metallic-roughness texture
   Sampler sampler;           // trilinear, repeat
   uint32_t triangleCount = 0;
+  // The buffers' element counts: the passes leave out a triangle that names a vertex past
+  // vertexCount, and give one that names a material past materialCount no reflectance, so a
+  // host's bad indices are never read out of bounds (gi::SceneGeometry).
+  uint32_t vertexCount = 0;
+  uint32_t materialCount = 0;
   uint32_t textureSize = 1;  // every layer is resampled to this square power-of-two size
   // Whether any material is alpha-tested (Material::alphaCutoff > 0): the rasterizer and the ISM
   // points then run their variants with the cut-out test (engine/alpha_cutout.h).

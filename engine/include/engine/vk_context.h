@@ -50,6 +50,9 @@ struct ExternalDevice {
   VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
   uint32_t queueFamily = 0;  // the family of the queue the host submits our commands to
+  // The feature chain the device was created with (VkDeviceCreateInfo::pNext), checked for the
+  // features the module needs; null: only the physical device's support is checked.
+  const VkPhysicalDeviceFeatures2* enabledFeatures = nullptr;
 };
 
 class Context {

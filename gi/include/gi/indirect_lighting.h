@@ -14,6 +14,7 @@
 #include <array>
 #include <glm/glm.hpp>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,12 +30,16 @@ struct Status {
 
 // The host's device. Requirements: Vulkan 1.3 with synchronization2 and maintenance4 enabled,
 // VK_KHR_push_descriptor, shaderInt64 and shaderBufferInt64Atomics (Vulkan 1.2 features); the
-// queue that runs our commands must support compute.
+// queue that runs our commands must support compute. `create` refuses a device that lacks one,
+// naming it: the features in `enabledFeatures` when the host gives the chain it created the
+// device with (Vulkan has no query for a device's enabled features), else the physical device's
+// support; a missing VK_KHR_push_descriptor or subgroup ballot is always found.
 struct DeviceHandles {
   VkInstance instance = VK_NULL_HANDLE;
   VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
   uint32_t queueFamily = 0;
+  const VkPhysicalDeviceFeatures2* enabledFeatures = nullptr;  // VkDeviceCreateInfo::pNext
 };
 
 // A host image: the view covers its single mip level; `layout` is the layout it is in when the
@@ -85,6 +90,16 @@ struct SceneGeometry {
   VkBuffer materials = VK_NULL_HANDLE;
   VkDeviceSize materialBytes = 0;
   uint32_t triangleCount = 0;
+  uint32_t vertexCount = 0;    // vertices in `vertices`; every buffer must hold its count
+  uint32_t materialCount = 0;  // materials in `materials`
+  // Optional CPU copies of the index and triangle-material buffers (3 and 1 values per
+  // triangle). With them setScene checks every index against vertexCount and every material
+  // against materialCount. Without them it cannot read the buffers, and the GPU passes guard
+  // instead: a triangle naming a vertex past vertexCount is left out of the light's view and the
+  // ISMs, one naming a material past materialCount reflects nothing in the light's view (it
+  // still casts shadows); nothing is read out of bounds either way.
+  std::span<const uint32_t> indexData;
+  std::span<const uint32_t> triangleMaterialData;
   VkImageView baseColorTextures = VK_NULL_HANDLE;
   VkImageView dataTextures = VK_NULL_HANDLE;
   VkSampler sampler = VK_NULL_HANDLE;

@@ -154,7 +154,7 @@ void Ism::recordPoints(VkCommandBuffer cmd, const engine::SceneGpu& scene,
   }
   if (cdf_.size() < VkDeviceSize{triangles} * sizeof(float))
     cdf_ = storageBuffer(ctx_, VkDeviceSize{triangles} * sizeof(float));
-  const gpu::IsmAreaPush areaPush{triangles, 0, 0, 0};
+  const gpu::IsmAreaPush areaPush{triangles, scene.vertexCount, 0, 0};
   area_.dispatch(
       cmd,
       {Binding::storage(scene.vertices), Binding::storage(scene.indices), Binding::storage(cdf_)},
@@ -162,7 +162,7 @@ void Ism::recordPoints(VkCommandBuffer cmd, const engine::SceneGpu& scene,
   engine::computeBarrier(cmd);
   scan_.dispatch(cmd, {Binding::storage(cdf_)}, areaPush, 1);
   engine::computeBarrier(cmd);
-  const gpu::IsmPointsPush pointsPush{triangles, settings_.pointCount, 0, 0};
+  const gpu::IsmPointsPush pointsPush{triangles, settings_.pointCount, scene.materialCount, 0};
   pointsPrograms_[scene.alphaCutouts ? 1 : 0].dispatch(
       cmd,
       {Binding::storage(cdf_), Binding::storage(points_), Binding::storage(scene.vertices),
