@@ -1,6 +1,6 @@
 // The device's measured arithmetic and memory peaks, so that pass times can be read as a
-// fraction of what the machine can do (design.md "measured, not guessed"): a micro-kernel of
-// independent FMA chains and a large buffer copy, timed with GPU timestamps.
+// fraction of what the machine can do (measured on the device, not taken from a data sheet): a
+// micro-kernel of independent FMA chains and a large buffer copy, timed with GPU timestamps.
 #pragma once
 
 #include <cstdint>
