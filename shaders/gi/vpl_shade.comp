@@ -98,7 +98,7 @@ void main() {
   float depth = imageLoad(gDepth, coord).r;
   bool shaded = inside && depth < 1.0;  // depth 1 = sky: never shaded
   vec2 ndc = pixelToNdc(vec2(coord) + 0.5, pc.viewport);
-  vec3 receiver = pc.eye.xyz + unproject(pc.invViewProjRelative, ndc, depth);
+  vec3 receiver = pc.eye + unproject(pc.invViewProjRelative, ndc, depth);
   vec3 origin, direction;
   cameraRay(pc.invViewProjRelative, ndc, origin, direction);
   vec3 view = -direction;

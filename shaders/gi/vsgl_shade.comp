@@ -155,7 +155,7 @@ void main() {
 
   vec2 ndc = pixelToNdc(vec2(coord) + 0.5, pc.viewport);
   // Relative to the eye, then moved: no cancellation of |eye| / znear sized terms.
-  vec3 receiver = pc.eye.xyz + unproject(pc.invViewProjRelative, ndc, depth);
+  vec3 receiver = pc.eye + unproject(pc.invViewProjRelative, ndc, depth);
   vec3 origin, direction;
   cameraRay(pc.invViewProjRelative, ndc, origin, direction);
   vec3 view = -direction;
@@ -189,7 +189,7 @@ void main() {
   uint lanes = subgroupBallotBitCount(subgroupBallot(true));
   // VSGL culling (docs/techniques/vsgl-culling.md): the subgroup is the tile. Per block each
   // lane bounds its VSGL over the subgroup's receivers (common/vsgl_bound.glsl), and VSGLs are
-  // skipped in order while their bounds add up to at most pc.eye.w (tau) of the least light
+  // skipped in order while their bounds add up to at most pc.cullBudget (tau) of the least light
   // any lane has gathered so far: each pixel loses at most tau of its light. The skip shortens
   // the loop below itself (lavapipe runs both sides of a branch).
   const bool culled = (kFlags & VSGL_SHADE_CULL) != 0u;
@@ -212,7 +212,7 @@ void main() {
     uvec4 keep = subgroupBallot(valid);
     if (culled) {
       vec3 light = (modulate ? diffuseSum * diffuseRoughness.rgb : diffuseSum) + glossySum;
-      float budget = pc.eye.w * subgroupMin(shaded ? largestChannel(light) : 3.0e38) - skippedBound;
+      float budget = pc.cullBudget * subgroupMin(shaded ? largestChannel(light) : 3.0e38) - skippedBound;
       // The diffuse lobe's emission sharpness lies in [(1 - beta) lambda, lambda] and its N is
       // least at lambda: the bound takes the widest emission with the least N. Foreshortening
       // only lowers the light (f <= 1, docs/techniques/planar-emitters.md).

@@ -21,7 +21,7 @@
 // the effect planner's SceneGeometry::maxSpecular = 0), so they would add exactly 0.
 #define VSGL_SHADE_DIFFUSE_LOBES 16u
 // VSGL culling (docs/techniques/vsgl-culling.md): per subgroup, VSGLs whose bound adds up to at
-// most VsglShadePush::eye.w of the least light gathered so far are skipped; counts in
+// most VsglShadePush::cullBudget of the least light gathered so far are skipped; counts in
 // VsglShadeStats.
 #define VSGL_SHADE_CULL 32u
 // Planar emitters (docs/techniques/planar-emitters.md, Settings::planarEmitters): flat clusters
@@ -38,9 +38,10 @@ SHARED_BEGIN
 
 struct VsglShadePush {
   mat4 invViewProjRelative;  // camera NDC -> offset from `eye` (engine::relativeUnprojection)
-  // xyz: the camera's position, world. w: VSGL_SHADE_CULL's budget tau, the fraction of a
-  // pixel's light that the skipped VSGLs may bound.
-  vec4 eye;
+  vec3 eye;  // the camera's position, world
+  // VSGL_SHADE_CULL's budget tau: the fraction of a pixel's light that the skipped VSGLs may
+  // bound (it fills the 16 bytes of `eye`'s row).
+  float cullBudget;
   uvec2 viewport;
   uint vsglCount;
   IsmParams ism;  // the atlas's layout and biases (read with VSGL_SHADE_VISIBILITY)
@@ -59,5 +60,6 @@ struct VsglShadeStats {
 SHARED_END
 
 SHARED_ASSERT_SIZE(VsglShadePush, 128);
+SHARED_ASSERT_OFFSET(VsglShadePush, cullBudget, 76);
 SHARED_ASSERT_SIZE(VsglShadeStats, 32);
 #endif

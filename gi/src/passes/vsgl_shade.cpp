@@ -78,7 +78,8 @@ void VsglShade::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engi
   gpu::VsglShadePush push{};
   const engine::RelativeUnprojection unprojection = engine::relativeUnprojection(camera);
   push.invViewProjRelative = unprojection.invViewProjRelative;
-  push.eye = glm::vec4(unprojection.eye, in.cullBudget);
+  push.eye = unprojection.eye;
+  push.cullBudget = in.cullBudget;
   push.viewport = {gbuffer.width, gbuffer.height};
   push.vsglCount = in.vsglCount;
   push.ism = in.ism;
