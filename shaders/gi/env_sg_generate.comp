@@ -42,50 +42,39 @@ float pdfTexel(ivec2 texel, int level) {
 }
 
 #include "common/lattice_warp.glsl"
+#include "common/fis_kernel.glsl"
 
-// Vulkan LINEAR filtering with CLAMP_TO_EDGE on one level of one layer, exact weights.
 vec4 bilinear(sampler2DArray s, vec2 x, int layer, int level) {
-  int n = int(pc.size) >> level;
-  vec2 t = x * float(n) - 0.5;
-  vec2 base = floor(t);
-  vec2 f = t - base;
-  ivec2 i0 = clamp(ivec2(base), ivec2(0), ivec2(n - 1));
-  ivec2 i1 = clamp(ivec2(base) + 1, ivec2(0), ivec2(n - 1));
-  vec4 top = mix(texelFetch(s, ivec3(i0, layer), level),
-                 texelFetch(s, ivec3(i1.x, i0.y, layer), level), f.x);
-  vec4 bottom = mix(texelFetch(s, ivec3(i0.x, i1.y, layer), level),
-                    texelFetch(s, ivec3(i1, layer), level), f.x);
-  return mix(top, bottom, f.y);
+  BilinearTaps b = bilinearTaps(x, int(pc.size) >> level);
+  return bilinearBlend(b, texelFetch(s, ivec3(b.i0, layer), level),
+                       texelFetch(s, ivec3(b.i1.x, b.i0.y, layer), level),
+                       texelFetch(s, ivec3(b.i0.x, b.i1.y, layer), level),
+                       texelFetch(s, ivec3(b.i1, layer), level));
 }
 
 vec4 trilinear(sampler2DArray s, vec2 x, int layer, float level) {
-  level = clamp(level, 0.0, float(pc.topLevel));
-  float low = floor(level);
-  int l0 = int(low), l1 = min(l0 + 1, int(pc.topLevel));
-  return mix(bilinear(s, x, layer, l0), bilinear(s, x, layer, l1), level - low);
+  int l0, l1;
+  float upper;
+  trilinearLevels(level, int(pc.topLevel), l0, l1, upper);
+  return mix(bilinear(s, x, layer, l0), bilinear(s, x, layer, l1), upper);
 }
 
-// The fraction of the whole PDF mass in a level-l kernel at x of `layer`: 4^l f~(x, l) /
+float gMassTop = 1.0;  // fisKernelMass's normalisation: the two layers' top means of m_t
+
+// The fraction of the whole PDF mass in a level-l kernel at x of gLayer: 4^l f~(x, l) /
 // (M m_top), f~ the kernel's mean of f_t lum (its directions' mass, those beyond the rim
 // included), m_top = the sum of the two layers' top means of m_t (M m_top = the total mass).
-float kernelMass(vec2 x, int layer, float level, float massTop) {
+float fisKernelMass(vec2 x, float level) {
   float m = float(pc.size) * float(pc.size);
-  return exp2(2.0 * level) * trilinear(directionPyramid, x, layer, level).w / (massTop * m);
+  return exp2(2.0 * level) * trilinear(directionPyramid, x, gLayer, level).w / (gMassTop * m);
 }
 
-// [S3] Eq. 3 with K: the level whose kernel holds K / N of the mass, by bisection on [0, L].
 float modifiedFisLevel(vec2 x, int layer, float massTop) {
-  float top = float(pc.topLevel);
-  float target = pc.kernelScale / float(pc.count);
-  if (!(massTop > 0.0)) return top;                              // a black environment
-  if (kernelMass(x, layer, 0.0, massTop) >= target) return 0.0;  // a spike: lights share a texel
-  if (pc.kernelScale >= float(pc.count)) return top;            // no kernel is large enough
-  float lo = 0.0, hi = top;
-  for (int step = 0; step < VSGL_BISECTION_STEPS; ++step) {
-    float mid = 0.5 * (lo + hi);
-    if (kernelMass(x, layer, mid, massTop) < target) lo = mid; else hi = mid;
-  }
-  return 0.5 * (lo + hi);
+  if (!(massTop > 0.0)) return float(pc.topLevel);  // a black environment
+  gLayer = layer;
+  gMassTop = massTop;
+  return modifiedFisBisection(x, pc.kernelScale / float(pc.count), float(pc.topLevel),
+                              pc.kernelScale < float(pc.count));
 }
 
 void main() {

@@ -25,44 +25,34 @@ layout(push_constant) uniform Push { VsglGeneratePush pc; };
 uint viewCount() { return pc.ranged != 0u ? ranges[pc.view].range.y : pc.count; }
 
 #include "common/lattice_warp.glsl"
+#include "common/fis_kernel.glsl"
 
-// Vulkan LINEAR filtering with CLAMP_TO_EDGE on one level, exact weights.
 vec4 bilinear(sampler2D s, vec2 x, int level) {
-  int n = int(pc.size) >> level;
-  vec2 t = x * float(n) - 0.5;
-  vec2 base = floor(t);
-  vec2 f = t - base;
-  ivec2 i0 = clamp(ivec2(base), ivec2(0), ivec2(n - 1));
-  ivec2 i1 = clamp(ivec2(base) + 1, ivec2(0), ivec2(n - 1));
-  vec4 top = mix(texelFetch(s, i0, level), texelFetch(s, ivec2(i1.x, i0.y), level), f.x);
-  vec4 bottom = mix(texelFetch(s, ivec2(i0.x, i1.y), level), texelFetch(s, i1, level), f.x);
-  return mix(top, bottom, f.y);
+  BilinearTaps b = bilinearTaps(x, int(pc.size) >> level);
+  return bilinearBlend(b, texelFetch(s, b.i0, level), texelFetch(s, ivec2(b.i1.x, b.i0.y), level),
+                       texelFetch(s, ivec2(b.i0.x, b.i1.y), level), texelFetch(s, b.i1, level));
 }
 
 vec4 trilinear(sampler2D s, vec2 x, float level) {
-  level = clamp(level, 0.0, float(pc.topLevel));
-  float low = floor(level);
-  int l0 = int(low), l1 = min(l0 + 1, int(pc.topLevel));
-  return mix(bilinear(s, x, l0), bilinear(s, x, l1), level - low);
+  int l0, l1;
+  float upper;
+  trilinearLevels(level, int(pc.topLevel), l0, l1, upper);
+  return mix(bilinear(s, x, l0), bilinear(s, x, l1), upper);
 }
 
+float gPdfTop = 1.0;  // fisKernelMass's normalisation: the PDF's top-level mean
+
 // PDF mass inside a level-l kernel at x: 4^l p~(x, l) / (M p_top) ([S3] Eq. 3's left side).
-float kernelMass(vec2 x, float level, float pTop) {
+float fisKernelMass(vec2 x, float level) {
   float m = float(pc.size) * float(pc.size);
-  return exp2(2.0 * level) * trilinear(diffuseAxis, x, level).w / (pTop * m);
+  return exp2(2.0 * level) * trilinear(diffuseAxis, x, level).w / (gPdfTop * m);
 }
 
 float modifiedFisLevel(vec2 x, float pTop) {
-  float top = float(pc.topLevel);
-  float target = pc.kernelScale / float(viewCount());
-  if (kernelMass(x, 0.0, pTop) >= target) return 0.0;   // a spike: VSGLs share the texel
-  if (pc.kernelScale >= float(viewCount())) return top;  // no kernel is large enough
-  float lo = 0.0, hi = top;
-  for (int step = 0; step < VSGL_BISECTION_STEPS; ++step) {
-    float mid = 0.5 * (lo + hi);
-    if (kernelMass(x, mid, pTop) < target) lo = mid; else hi = mid;
-  }
-  return 0.5 * (lo + hi);
+  gPdfTop = pTop;
+  // Below a kernel scale of N some kernel is large enough; else every kernel is the whole map.
+  return modifiedFisBisection(x, pc.kernelScale / float(viewCount()), float(pc.topLevel),
+                              pc.kernelScale < float(viewCount()));
 }
 
 // Tok15 ([S3] Eq. 1 with K): 4^l / M = K / (N p) with the unfiltered density at the centre.
