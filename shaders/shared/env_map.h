@@ -18,7 +18,7 @@
 #define ENV_SH_LEVEL_SIZE 64
 // A texel's solid angle in the SH projection: the midpoint rule on this many points per side,
 // counting only those in the layer's own hemisphere (gi::envMapTexelSolidAngle), so that rim
-// texels count their own hemisphere's part once. Must equal gi::kEnvMapShTexelSamples.
+// texels count their own hemisphere's part once; the CPU side reads this define too.
 #define ENV_SH_TEXEL_SAMPLES 4
 
 SHARED_BEGIN

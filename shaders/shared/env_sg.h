@@ -25,7 +25,8 @@
 #define ENV_SG_PYRAMIDS 2
 // w_t and the direction integral by the midpoint rule on this many points per texel side, the
 // points inside the layer's own hemisphere only: the rule of gi::envMapTexelSolidAngle (must
-// equal gi::kEnvMapShTexelSamples), so that every direction is counted once.
+// equal ENV_SH_TEXEL_SAMPLES, asserted in gi/src/common/env_texels.cpp), so that every
+// direction is counted once.
 #define ENV_SG_TEXEL_SAMPLES 4
 // The most lights one EnvSgLights generates (its buffer's size) unless told otherwise.
 #define ENV_SG_DEFAULT_MAX_COUNT 4096

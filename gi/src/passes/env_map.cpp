@@ -6,7 +6,6 @@
 #include <string>
 
 #include "engine/commands.h"
-#include "reference/env_map_reference.h"
 #include "shared/env_map.h"
 #include "shared/environment.h"
 #include "spirv/env_mip_reduce.h"
@@ -19,7 +18,6 @@ namespace {
 
 constexpr uint32_t kLayers = 2;
 constexpr uint32_t kMaxSize = 4096;
-static_assert(ENV_SH_TEXEL_SAMPLES == kEnvMapShTexelSamples, "env_sh.comp and its twin differ");
 
 void checkFormat(engine::Context& ctx) {
   VkFormatProperties properties{};

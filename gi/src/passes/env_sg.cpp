@@ -7,10 +7,8 @@
 
 #include "engine/commands.h"
 #include "engine/error.h"
+#include "common/env_texels.h"
 #include "passes/ggx_albedo_table.h"
-#include "reference/env_map_reference.h"
-#include "reference/env_sg_reference.h"
-#include "reference/sg_math.h"
 #include "shared/env_map.h"
 #include "spirv/env_mip_reduce.h"
 #include "spirv/env_sg_generate.h"
@@ -23,8 +21,6 @@ namespace {
 
 constexpr uint32_t kLayers = 2;
 constexpr uint32_t kMaxSize = 4096;
-static_assert(ENV_SG_TEXEL_SAMPLES == kEnvMapShTexelSamples,
-              "env_sg_pyramid.comp's solid angles differ from envMapTexelSolidAngle's");
 
 }  // namespace
 

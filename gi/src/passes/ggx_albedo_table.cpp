@@ -3,7 +3,7 @@
 #include <span>
 #include <vector>
 
-#include "reference/sg_math.h"
+#include "common/ggx_albedo.h"
 
 namespace gi {
 

@@ -117,26 +117,6 @@ EnvMapReference envMapFromEquirect(const engine::ImageRgba32f& equirect, uint32_
   return map;
 }
 
-double envMapTexelSolidAngle(uint32_t n, uint32_t layer, uint32_t x, uint32_t y) {
-  // K x K points (x + (i + 1/2) / K, y + (j + 1/2) / K) / n: at each, 2 st - 1 =
-  // (2 (K x + i) + 1 - K n) / (K n) is exact, and rho^2 = b^2 |2 st - 1|^2 never ties 1 (that
-  // needs (K n)^2 / b^2 = (K n)^2 25 / 36 to be an integer, impossible for K n a power of two),
-  // so the fp32 shader classifies every point as double does.
-  const uint32_t k = kEnvMapShTexelSamples;
-  const double kn = double(k) * n;
-  double sum = 0.0;
-  for (uint32_t j = 0; j < k; ++j)
-    for (uint32_t i = 0; i < k; ++i) {
-      const double cx = (2.0 * (k * x + i) + 1.0 - kn) / kn;
-      const double cy = (2.0 * (k * y + j) + 1.0 - kn) / kn;
-      const double rho2 = kParaboloidScale * kParaboloidScale * (cx * cx + cy * cy);
-      if (layer == 0 ? rho2 > 1.0 : rho2 >= 1.0) continue;
-      const double onePlusRho2 = 1.0 + rho2;
-      sum += 16.0 * kParaboloidScale * kParaboloidScale / (onePlusRho2 * onePlusRho2);
-    }
-  return sum / (kn * kn);
-}
-
 ShRgb envMapSh(const EnvMapReference& map, uint32_t level) {
   if (level >= map.levels.size())
     throw engine::Error("environment map: SH level " + std::to_string(level) + " of a map with " +

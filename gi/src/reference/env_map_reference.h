@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/image_io.h"
+#include "common/env_texels.h"
 #include "reference/sh_irradiance.h"
 
 namespace gi {
@@ -50,15 +51,6 @@ EnvMapReference envMapFromEquirect(const engine::ImageRgba32f& equirect, uint32_
 // poles). rgb; alpha is ignored. `equirect` must be non-empty.
 glm::dvec3 equirectBilinear(const engine::ImageRgba32f& equirect, glm::dvec2 uv);
 
-// The SH projection's solid angle of texel (x, y) of an n x n level of `layer`: the part of the
-// texel in the layer's OWN hemisphere (rho^2 <= 1 in layer 0, rho^2 < 1 in layer 1, so the
-// equator belongs to layer 0 as in env_paraboloid.h), by the midpoint rule on K x K points of
-// the texel, K = kEnvMapShTexelSamples: (1 / (n K)^2) sum r(point) over the points with
-// rho^2 <= 1. Every direction of the sphere is thus counted once, by the layer that owns it,
-// and the rim is a staircase of (n K)^2 cells rather than of whole texels. 0 for texels wholly
-// outside the disc. shaders/gi/env_sh.comp computes the same.
-constexpr uint32_t kEnvMapShTexelSamples = 4;
-double envMapTexelSolidAngle(uint32_t n, uint32_t layer, uint32_t x, uint32_t y);
 
 // The map's 9 SH radiance coefficients, as the SH pass projects them: every texel of `level`
 // with its radiance at the direction of its centre, weighted by the solid angle of its part in

@@ -35,10 +35,12 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
+#include "shared/environment.h"
+
 namespace gi {
 
-// [S1] Section 20.4.
-constexpr double kParaboloidScale = 1.2;
+// [S1] Section 20.4 (shaders/shared/environment.h, which the shaders read too).
+constexpr double kParaboloidScale = ENV_PARABOLOID_SCALE;
 
 // Sign convention: BOTH maps use (s, t) = 1/2 + (x, y) / (2 b (1 + z_m)), with x along +s and y
 // along +t and only z_m flipped. A direction on the equator therefore has the same (s, t) in both

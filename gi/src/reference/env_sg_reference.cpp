@@ -61,14 +61,6 @@ double EnvSgPyramids::massTop() const {
          pyramids[ENV_SG_RADIANCE][1].levels.back()[0].a;
 }
 
-double envSgOwnSolidAngle(uint32_t n) {
-  double sum = 0.0;
-  for (uint32_t layer = 0; layer < kLayers; ++layer)
-    for (uint32_t y = 0; y < n; ++y)
-      for (uint32_t x = 0; x < n; ++x) sum += envMapTexelSolidAngle(n, layer, x, y);
-  return sum;
-}
-
 EnvSgPyramids envSgPyramids(const EnvMapReference& map) {
   const uint32_t n = map.size;
   if (n == 0 || map.levels.empty()) throw engine::Error("environment SG pyramids: an empty map");

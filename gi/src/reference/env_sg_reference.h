@@ -112,9 +112,6 @@ struct EnvSgPyramids {
   double solidAngle = 0.0;
 };
 EnvSgPyramids envSgPyramids(const EnvMapReference& map);
-// sum of envMapTexelSolidAngle over both layers of an n x n level: 4 pi up to the staircase
-// rim (< 1e-4 relative). The GPU pass gets it from the host (a push constant).
-double envSgOwnSolidAngle(uint32_t n);
 
 // One light as the generation pass writes it (gpu::EnvSgLight), in double.
 struct EnvSgLightReference {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/gbuffer_reference.h"
-#include "passes/rsm.h"
+#include "common/rsm_view.h"
 
 namespace gi {
 

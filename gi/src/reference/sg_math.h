@@ -19,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include "common/ggx_albedo.h"
 #include "shared/vsgl.h"
 
 namespace gi {
@@ -161,10 +162,6 @@ double sgGgxPeakCorrection(double beta);
 // 17 x 17 table over (sqrt(n . v), sqrt(alpha)) computed by quadrature (the unit test
 // re-derives its nodes), read bilinearly. nv and alpha are clamped like brdf.glsl.
 glm::dvec2 ggxSpecularAlbedo(double nv, double alpha);
-// The table's node (i, j), 0 <= i, j < kGgxAlbedoTableSize: n . v = max((i / 16)^2, 1e-4),
-// alpha = max((j / 16)^2, 1e-3).
-constexpr int kGgxAlbedoTableSize = 17;
-glm::dvec2 ggxSpecularAlbedoNode(int i, int j);
 
 // Approximation of integral G(w; light.axis, light.sharpness) f_spec(w, view) (w . n)^+ dw for a
 // UNIT-amplitude SG (light.logAmplitude is ignored: the caller multiplies by exp(logAmplitude)

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/gbuffer_reference.h"
-#include "passes/rsm.h"
+#include "common/rsm_view.h"
 #include "shared/vsgl_attributes.h"
 
 namespace gi {
