@@ -171,11 +171,13 @@ std::vector<glm::vec4> Image::readbackRgba32f(Context& ctx, uint32_t level) {
   return texels;
 }
 
-Sampler::Sampler(Context& ctx, VkSamplerAddressMode address) : device_(ctx.device()) {
+Sampler::Sampler(Context& ctx, VkSamplerAddressMode address, VkFilter filter)
+    : device_(ctx.device()) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  info.magFilter = VK_FILTER_LINEAR;
-  info.minFilter = VK_FILTER_LINEAR;
-  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  info.magFilter = filter;
+  info.minFilter = filter;
+  info.mipmapMode = filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR
+                                               : VK_SAMPLER_MIPMAP_MODE_NEAREST;
   info.addressModeU = address;
   info.addressModeV = address;
   info.addressModeW = address;

@@ -19,6 +19,7 @@
 #include "passes/env_fis.h"
 #include "passes/env_map.h"
 #include "passes/env_sg.h"
+#include "passes/gbuffer_convert.h"
 #include "passes/ism.h"
 #include "passes/kmeans.h"
 #include "passes/vsgl_allocation.h"
@@ -83,19 +84,20 @@ engine::Image borrowImage(const ImageRef& ref, uint32_t width, uint32_t height, 
 
 // The host's G-buffer images move from the layouts it handed in to GENERAL, after whatever
 // stage wrote them (the host may have rasterised them with graphics pipelines).
-void acquireHostImages(VkCommandBuffer cmd, engine::GBuffer& g) {
+void acquireHostImages(VkCommandBuffer cmd, engine::GBuffer& g, bool depthAspect) {
   std::vector<VkImageMemoryBarrier2> barriers;
   for (engine::Image* image : {&g.depth, &g.normal, &g.diffuse, &g.specular}) {
     VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     b.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
     b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+    b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
     b.oldLayout = image->layout();
     b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image->handle();
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    const bool depth = depthAspect && image == &g.depth;
+    b.subresourceRange = {depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     barriers.push_back(b);
     image->setLayout(VK_IMAGE_LAYOUT_GENERAL);
   }
@@ -103,6 +105,11 @@ void acquireHostImages(VkCommandBuffer cmd, engine::GBuffer& g) {
   dep.imageMemoryBarrierCount = static_cast<uint32_t>(barriers.size());
   dep.pImageMemoryBarriers = barriers.data();
   vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+// A borrowed handle on one of the module's own images (GENERAL), to stand in a GBuffer.
+engine::Image borrowOwn(const engine::Image& image) {
+  return engine::Image::borrow(image.handle(), image.view(), image.desc(), image.layout());
 }
 
 Status failure(const std::string& message) {
@@ -198,6 +205,7 @@ struct IndirectLighting::Impl {
   AdaptiveShading adaptive;
   IndirectImages indirect;
   std::optional<engine::Image> debugVisibility;  // created with the first debug frame
+  std::optional<GBufferConvert> converter;       // created with the first converted frame
   // Environment lighting: created together by the first setEnvironment; `environmentSet` is
   // false again after setEnvironment with width 0.
   std::optional<EnvironmentMap> environmentMap;
@@ -320,6 +328,17 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
       throw engine::Error(
           "FrameInput.gbuffer: every image needs its VkImage, VkImageView and current layout "
           "(not UNDEFINED)");
+  if (g.depthEncoding > DepthEncoding::ViewDistance)
+    throw engine::Error("FrameInput.gbuffer.depthEncoding: " +
+                        std::to_string(uint32_t(g.depthEncoding)) +
+                        " is none of Ndc, ReversedNdc, ViewDistance");
+  if (g.normalEncoding > NormalEncoding::WorldUnsigned)
+    throw engine::Error("FrameInput.gbuffer.normalEncoding: " +
+                        std::to_string(uint32_t(g.normalEncoding)) +
+                        " is none of Octahedral, WorldSigned, WorldUnsigned");
+  if (g.depthFormat != VK_FORMAT_R32_SFLOAT && g.depthFormat != VK_FORMAT_D32_SFLOAT)
+    throw engine::Error("FrameInput.gbuffer.depthFormat: " + std::to_string(g.depthFormat) +
+                        " is neither VK_FORMAT_R32_SFLOAT nor VK_FORMAT_D32_SFLOAT");
   if (in.lights.size() > kMaxLights)
     throw engine::Error("FrameInput.lights: " + std::to_string(in.lights.size()) +
                         " lights, more than kMaxLights = " + std::to_string(kMaxLights));
@@ -334,12 +353,25 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   engine::GBuffer gbuffer;
   gbuffer.width = width;
   gbuffer.height = height;
-  gbuffer.depth = borrowImage(g.depth, width, height, VK_FORMAT_R32_SFLOAT);
+  gbuffer.depth = borrowImage(g.depth, width, height, g.depthFormat);
   gbuffer.normal = borrowImage(g.normal, width, height, VK_FORMAT_R16G16_SNORM);
+  // Another encoding than the module's: converted first (GBufferConvert), into its own images.
+  const bool convert = g.depthEncoding != DepthEncoding::Ndc ||
+                       g.depthFormat != VK_FORMAT_R32_SFLOAT ||
+                       g.normalEncoding != NormalEncoding::Octahedral;
+  if (convert && !converter) converter.emplace(ctx, width, height);
   gbuffer.diffuse = borrowImage(g.diffuse, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
   gbuffer.specular = borrowImage(g.specular, width, height, VK_FORMAT_R16G16B16A16_SFLOAT);
 
-  const engine::View camera = engine::makeView(in.camera.view, in.camera.proj, width, height);
+  // The module works with forward depth: a reversed-Z projection's clip z becomes w - z.
+  glm::mat4 proj = in.camera.proj;
+  if (g.depthEncoding == DepthEncoding::ReversedNdc) {
+    glm::mat4 flip(1.0f);
+    flip[2][2] = -1.0f;
+    flip[3][2] = 1.0f;
+    proj = flip * proj;
+  }
+  const engine::View camera = engine::makeView(in.camera.view, proj, width, height);
   const uint32_t rule = static_cast<uint32_t>(settings.rule);
 
   plan = planFrame(settings, in.lights, bounds, maxReflectance, maxSpecular, canOcclude,
@@ -360,7 +392,17 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   const engine::Buffer* vsgls = nullptr;  // this frame's, from filtered sampling or k-means
   {
     engine::ProfileScope frame(&profiler, cmd, "frame");
-    acquireHostImages(cmd, gbuffer);
+    acquireHostImages(cmd, gbuffer, g.depthFormat == VK_FORMAT_D32_SFLOAT);
+    if (convert) {
+      gpu::GBufferConvertPush push{};
+      push.depthRow = glm::vec4(proj[2][2], proj[3][2], proj[2][3], proj[3][3]);
+      push.viewport = {width, height};
+      push.depthEncoding = static_cast<uint32_t>(g.depthEncoding);
+      push.normalEncoding = static_cast<uint32_t>(g.normalEncoding);
+      converter->record(cmd, gbuffer.depth, gbuffer.normal, push, &profiler);
+      gbuffer.depth = borrowOwn(converter->depth());
+      gbuffer.normal = borrowOwn(converter->normal());
+    }
     if (plan.bounce) {
       vsgls = &recordPasses(cmd, gbuffer, camera, views, rule);
       // The outputs, written by compute, become visible to whatever the host does next.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <glm/gtc/packing.hpp>
 
 #include "indirect.h"
 #include "room.h"
@@ -93,12 +94,64 @@ int main() try {
     if (cpu.quad[i] == 0 && cpu.position[i].x > 0.5f) nearGreen += glm::dvec3(c);
   }
   const double redTint = nearRed.r / nearRed.g, greenTint = nearGreen.r / nearGreen.g;
+
+  // The same frame from a G-buffer as many renderers keep it: reversed-Z depth in a D32 depth
+  // image (with the reversed projection) and world-space normals in RGBA16F. The module converts
+  // both; the light must agree with the first frame's to 0.1 % of its mean (the conversions round
+  // in fp32, the half normals to 2^-11: docs/integration.md).
+  std::vector<float> reversed(cpu.depth.size());
+  std::vector<uint16_t> worldNormals(4 * cpu.depth.size(), 0);
+  for (size_t i = 0; i < cpu.depth.size(); ++i) {
+    reversed[i] = 1.0f - cpu.depth[i];
+    for (int c = 0; c < 3; ++c) worldNormals[4 * i + c] = glm::packHalf1x16(cpu.worldNormal[i][c]);
+  }
+  const HostImage depth32 = host.image(VK_FORMAT_D32_SFLOAT, width, height, VK_IMAGE_USAGE_SAMPLED_BIT);
+  const HostImage rgbNormal = host.image(VK_FORMAT_R16G16B16A16_SFLOAT, width, height, VK_IMAGE_USAGE_SAMPLED_BIT);
+  host.upload(depth32, reversed.data(), reversed.size() * 4, readOnly);
+  host.upload(rgbNormal, worldNormals.data(), worldNormals.size() * 2, readOnly);
+  // The first frame left the G-buffer in the layout it reports.
+  for (gi::ImageRef* image : {&scene.gbuffer.depth, &scene.gbuffer.normal, &scene.gbuffer.diffuse,
+                              &scene.gbuffer.specular})
+    image->layout = out.gbufferLayout;
+  HostScene encoded = scene;
+  encoded.gbuffer.depth = {depth32.image, depth32.view, readOnly};
+  encoded.gbuffer.normal = {rgbNormal.image, rgbNormal.view, readOnly};
+  encoded.gbuffer.depthEncoding = gi::DepthEncoding::ReversedNdc;
+  encoded.gbuffer.depthFormat = VK_FORMAT_D32_SFLOAT;
+  encoded.gbuffer.normalEncoding = gi::NormalEncoding::WorldSigned;
+  glm::mat4 flip(1.0f);  // clip z -> w - z
+  flip[2][2] = -1.0f;
+  flip[3][2] = 1.0f;
+  encoded.camera.proj = flip * room.proj;
+  std::unique_ptr<gi::IndirectLighting> second;
+  gi::FrameOutput out2;
+  host.submit([&](VkCommandBuffer cmd) {
+    second = recordIndirect({host.instance, host.physicalDevice, host.device, host.queueFamily},
+                            encoded, cmd, &out2, &error);
+  });
+  if (!second) {
+    std::fprintf(stderr, "consumer: %s\n", error.c_str());
+    return 1;
+  }
+  result.image = out2.indirectDiffuse.image;
+  const std::vector<float> light2 = host.readRgba32f(result, out2.indirectDiffuse.layout);
+  double sum = 0.0, sum2 = 0.0;
+  for (size_t i = 0; i < light.size(); ++i)
+    if (i % 4 != 3) {
+      sum += light[i];
+      sum2 += light2[i];
+    }
+  const double encodedRatio = sum2 / sum;
+
   std::printf("consumer: %zu of %zu surface pixels lit, %zu bad, %zu sky pixels lit; floor r/g "
-              "%.2f by the red wall, %.2f by the green; %u validation messages\n",
-              lit, surface, bad, litSky, redTint, greenTint, host.validationMessages);
+              "%.2f by the red wall, %.2f by the green; D32 reversed-Z and RGBA16F normals: %.5f "
+              "of the light; %u validation messages\n",
+              lit, surface, bad, litSky, redTint, greenTint, encodedRatio,
+              host.validationMessages);
   module.reset();
+  second.reset();
   const bool ok = bad == 0 && litSky == 0 && lit * 10 >= surface * 9 && redTint > 1.2 * greenTint &&
-                  host.validationMessages == 0;
+                  std::abs(encodedRatio - 1.0) <= 1e-3 && host.validationMessages == 0;
   return ok ? 0 : 1;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "consumer: %s\n", e.what());

@@ -69,7 +69,8 @@ CpuGBuffer rayCastGBuffer(const Room& room, uint32_t width, uint32_t height) {
   const size_t pixels = size_t{width} * height;
   CpuGBuffer g{std::vector<float>(pixels, 1.0f), std::vector<int16_t>(2 * pixels, 0),
                std::vector<uint16_t>(4 * pixels, 0), std::vector<uint16_t>(4 * pixels, 0),
-               std::vector<int>(pixels, -1), std::vector<glm::vec3>(pixels, glm::vec3(0.0f))};
+               std::vector<int>(pixels, -1), std::vector<glm::vec3>(pixels, glm::vec3(0.0f)),
+               std::vector<glm::vec3>(pixels, glm::vec3(0.0f))};
   const glm::mat4 viewProj = room.proj * room.view;
   const glm::mat4 inverse = glm::inverse(viewProj);
   for (uint32_t y = 0; y < height; ++y)
@@ -96,6 +97,7 @@ CpuGBuffer rayCastGBuffer(const Room& room, uint32_t width, uint32_t height) {
       const Quad& quad = kQuads[g.quad[i]];
       glm::vec3 n = normalOf(quad);
       if (glm::dot(n, dir) > 0.0f) n = -n;  // facing the viewer
+      g.worldNormal[i] = n;
       const glm::vec4 clip = viewProj * glm::vec4(g.position[i], 1.0f);
       g.depth[i] = clip.z / clip.w;
       const glm::vec2 e = octEncode(n);

@@ -29,5 +29,6 @@ struct CpuGBuffer {
   std::vector<uint16_t> diffuse, specular;
   std::vector<int> quad;
   std::vector<glm::vec3> position;
+  std::vector<glm::vec3> worldNormal;  // facing the viewer; 0 for the sky
 };
 CpuGBuffer rayCastGBuffer(const Room& room, uint32_t width, uint32_t height);

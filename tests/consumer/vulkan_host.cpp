@@ -32,7 +32,8 @@ bool hasValidationLayer() {
 }
 
 // An image barrier from `from` to `to`, waiting for all earlier work.
-void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to) {
+void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT) {
   VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
   b.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
@@ -41,7 +42,7 @@ void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageL
   b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+  b.subresourceRange = {aspect, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
   VkDependencyInfo d{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   d.imageMemoryBarrierCount = 1;
   d.pImageMemoryBarriers = &b;
@@ -195,6 +196,7 @@ HostImage VulkanHost::image(VkFormat format, uint32_t width, uint32_t height,
   i.width = width;
   i.height = height;
   i.layers = layers;
+  i.aspect = format == VK_FORMAT_D32_SFLOAT ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = format;
@@ -212,7 +214,7 @@ HostImage VulkanHost::image(VkFormat format, uint32_t width, uint32_t height,
   view.image = i.image;
   view.viewType = array || layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   view.format = format;
-  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+  view.subresourceRange = {i.aspect, 0, 1, 0, layers};
   check(vkCreateImageView(device, &view, nullptr, &i.view), "vkCreateImageView");
   images_.push_back(i);
   return i;
@@ -226,15 +228,16 @@ void VulkanHost::upload(const HostImage& image, const void* texels, VkDeviceSize
   std::memcpy(mapped, texels, bytes);
   vkUnmapMemory(device, s.memory);
   submit([&](VkCommandBuffer cmd) {
-    transition(cmd, image.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    transition(cmd, image.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               image.aspect);
     for (uint32_t layer = 0; layer < image.layers; ++layer) {
       VkBufferImageCopy copy{};
-      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, layer, 1};
+      copy.imageSubresource = {image.aspect, 0, layer, 1};
       copy.imageExtent = {image.width, image.height, 1};
       vkCmdCopyBufferToImage(cmd, s.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                              &copy);
     }
-    transition(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout);
+    transition(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout, image.aspect);
   });
   destroy(s);
 }

@@ -21,6 +21,7 @@ struct HostImage {
   VkImageView view = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   uint32_t width = 0, height = 0, layers = 1;
+  VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;  // DEPTH for a D32 image
 };
 
 class VulkanHost {

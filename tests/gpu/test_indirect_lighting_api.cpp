@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <cstring>
+#include <glm/gtc/packing.hpp>
 #include <limits>
+#include <random>
 
 #include "engine/builtin_scenes.h"
 #include "engine/commands.h"
@@ -18,6 +21,8 @@
 #include "gi_host.h"
 #include "gpu_fixture.h"
 #include "light_validation.h"
+#include "passes/gbuffer_convert.h"
+#include "reference/gbuffer_convert_reference.h"
 #include "passes/rsm.h"
 #include "room_shell.h"
 
@@ -300,6 +305,215 @@ TEST_F(IndirectLightingApiTest, CreateNamesAMissingDeviceFeature) {
                                   " is not enabled in the device's features "
                                   "(DeviceHandles::enabledFeatures)");
     *feature = VK_TRUE;
+  }
+}
+
+// The host's G-buffer in other encodings (gi::DepthEncoding, gi::NormalEncoding), made on the
+// CPU from the fixture's: reversed-Z depth (with the reversed projection) and world-space normals
+// in RGBA16F; view-space distance and normals as RGBA8 n / 2 + 1/2. The converted frame must
+// shade as the native one: its depth comes back within an ulp (1 - (1 - d) is exact for d >= 1/2;
+// the view distance returns through the depth row in fp32: 1e-6 relative) and its half normals
+// within 2^-11, finer than the module's own 16-bit octahedral step. 8-bit normals carry less
+// (0.3 degrees), which moves glossy highlights by more than any conversion error, so their frame
+// is compared with a native one given the same 8-bit normals in the module's encoding. Both
+// images agree to 0.1 % of their mean, with at most 1 % of the pixels further off than 3 % (an
+// ISM depth test or an adaptive-shading decision that the last bit flips).
+TEST_F(IndirectLightingApiTest, GBufferEncodingsShadeAsTheNativeOne) {
+  gi::Settings settings = smallSettings();
+  const Frame native = shadeFrame(settings);
+  const auto depthBytes = gbuffer_->depth.readback(ctx());
+  const auto normalBytes = gbuffer_->normal.readback(ctx());
+  const size_t pixels = size_t{kWidth} * kHeight;
+  std::vector<float> reversed(pixels), distance(pixels);
+  std::vector<uint16_t> halfNormals(4 * pixels);
+  std::vector<uint8_t> byteNormals(4 * pixels);
+  std::vector<int16_t> byteOctahedral(2 * pixels);  // the 8-bit normals, in the module's encoding
+  const glm::dmat4 inverseProj = glm::inverse(glm::dmat4(view_.proj));
+  for (size_t i = 0; i < pixels; ++i) {
+    float d;
+    std::memcpy(&d, depthBytes.data() + 4 * i, 4);
+    reversed[i] = 1.0f - d;
+    const glm::dvec2 ndc = (glm::dvec2(i % kWidth, i / kWidth) + 0.5) /
+                               glm::dvec2(kWidth, kHeight) * 2.0 - 1.0;
+    const glm::dvec4 v = inverseProj * glm::dvec4(ndc, d, 1.0);
+    distance[i] = d >= 1.0f ? 0.0f : static_cast<float>(-v.z / v.w);
+    int16_t e[2];
+    std::memcpy(e, normalBytes.data() + 4 * i, 4);
+    const glm::dvec2 oct(std::max(e[0] / 32767.0, -1.0), std::max(e[1] / 32767.0, -1.0));
+    glm::dvec3 n(oct, 1.0 - std::abs(oct.x) - std::abs(oct.y));
+    if (n.z < 0.0)
+      n = glm::dvec3((1.0 - std::abs(n.y)) * (n.x >= 0.0 ? 1.0 : -1.0),
+                     (1.0 - std::abs(n.x)) * (n.y >= 0.0 ? 1.0 : -1.0), n.z);
+    n = d >= 1.0f ? glm::dvec3(0.0) : glm::normalize(n);  // the sky stores no normal
+    for (int c = 0; c < 3; ++c) {
+      halfNormals[4 * i + c] = glm::packHalf1x16(static_cast<float>(n[c]));
+      byteNormals[4 * i + c] = static_cast<uint8_t>(std::lround((n[c] * 0.5 + 0.5) * 255.0));
+    }
+    const glm::dvec2 e8 = d >= 1.0f ? glm::dvec2(0.0)
+                                    : gi::octahedralReference(
+                                          GBUFFER_NORMAL_WORLD_UNSIGNED,
+                                          glm::dvec4(byteNormals[4 * i] / 255.0,
+                                                     byteNormals[4 * i + 1] / 255.0,
+                                                     byteNormals[4 * i + 2] / 255.0, 0.0));
+    for (int c = 0; c < 2; ++c)
+      byteOctahedral[2 * i + c] = static_cast<int16_t>(std::lround(e8[c] * 32767.0));
+  }
+  auto image = [&](VkFormat format, const void* data, size_t bytes) {
+    engine::ImageDesc desc;
+    desc.width = kWidth;
+    desc.height = kHeight;
+    desc.format = format;
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+    auto i = std::make_unique<engine::Image>(ctx(), desc);
+    i->upload(ctx(), data, bytes);
+    return i;
+  };
+  const auto reversedDepth = image(VK_FORMAT_R32_SFLOAT, reversed.data(), 4 * pixels);
+  const auto distanceDepth = image(VK_FORMAT_R32_SFLOAT, distance.data(), 4 * pixels);
+  const auto signedNormals = image(VK_FORMAT_R16G16B16A16_SFLOAT, halfNormals.data(), 8 * pixels);
+  const auto unsignedNormals = image(VK_FORMAT_R8G8B8A8_UNORM, byteNormals.data(), 4 * pixels);
+  // The 8-bit normals carry less than the module's own encoding: their frame is compared with a
+  // native one given the same normals (so the test measures the conversion, not the encoding).
+  const auto byteBaseline = image(VK_FORMAT_R16G16_SNORM, byteOctahedral.data(), 4 * pixels);
+  auto ref = [](const engine::Image& i) { return gi::ImageRef{i.handle(), i.view(), i.layout()}; };
+  glm::mat4 flip(1.0f);
+  flip[2][2] = -1.0f;
+  flip[3][2] = 1.0f;
+  struct Case {
+    const char* name;
+    const engine::Image* depth;
+    const engine::Image* normal;
+    gi::DepthEncoding depthEncoding;
+    gi::NormalEncoding normalEncoding;
+    glm::mat4 proj;
+    const engine::Image* baselineNormal;  // null: the fixture's own normals
+  };
+  const Case cases[] = {{"reversed-Z, half normals", reversedDepth.get(), signedNormals.get(),
+                         gi::DepthEncoding::ReversedNdc, gi::NormalEncoding::WorldSigned,
+                         flip * view_.proj, nullptr},
+                        {"view distance, 8-bit normals", distanceDepth.get(), unsignedNormals.get(),
+                         gi::DepthEncoding::ViewDistance, gi::NormalEncoding::WorldUnsigned,
+                         view_.proj, byteBaseline.get()}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    gi::FrameInput base = input();
+    if (c.baselineNormal) base.gbuffer.normal = ref(*c.baselineNormal);
+    const Frame baseline = c.baselineNormal ? shadeFrame(settings, base, geometry()) : Frame{};
+    const Frame& expected = c.baselineNormal ? baseline : native;
+    gi::FrameInput in = input();
+    in.gbuffer.depth = ref(*c.depth);
+    in.gbuffer.normal = ref(*c.normal);
+    in.gbuffer.depthEncoding = c.depthEncoding;
+    in.gbuffer.normalEncoding = c.normalEncoding;
+    in.camera.proj = c.proj;
+    const Frame converted = shadeFrame(settings, in, geometry());
+    ASSERT_EQ(converted.diffuse.size(), expected.diffuse.size());
+    for (const bool diffuse : {true, false}) {
+      const auto& a = diffuse ? expected.diffuse : expected.glossy;
+      const auto& b = diffuse ? converted.diffuse : converted.glossy;
+      double sum = 0.0, otherSum = 0.0;
+      size_t off = 0;
+      for (size_t i = 0; i < pixels; ++i) {
+        const double x = a[i].r + a[i].g + a[i].b, y = b[i].r + b[i].g + b[i].b;
+        sum += x;
+        otherSum += y;
+        off += std::abs(y - x) > 0.03 * std::abs(x) + 1e-7;
+      }
+      ASSERT_GT(sum, 0.0);
+      EXPECT_NEAR(otherSum / sum, 1.0, 1e-3);
+      EXPECT_LE(off, pixels / 100);
+      std::printf("%s, %s: mean ratio %.6f, %zu of %zu pixels off by over 3 %%\n", c.name,
+                  diffuse ? "diffuse" : "glossy", otherSum / sum, off, pixels);
+    }
+    bool convertPass = false;
+    double frameMs = 0.0;
+    for (const gi::PassTime& t : converted.lighting->lastFrameTimes())
+      if (t.name == "frame") frameMs = t.ms;
+    for (const gi::PassTime& t : converted.lighting->lastFrameTimes()) {
+      if (t.name != "gbuffer convert") continue;
+      convertPass = true;
+      std::printf("%s: gbuffer convert %.3f ms (%.1f ns per pixel), %.2f %% of the frame\n",
+                  c.name, t.ms, 1e6 * t.ms / double(pixels), 100.0 * t.ms / frameMs);
+    }
+    EXPECT_TRUE(convertPass);
+  }
+  for (const gi::PassTime& t : native.lighting->lastFrameTimes())
+    EXPECT_NE(t.name, "gbuffer convert") << "the module's own encodings need no conversion";
+}
+
+// gbuffer_convert.comp against its twin on chosen texels: depths at and around the sky's value
+// and the near plane, negative and infinite view distances; random normals, a zero one, and 8-bit
+// ones. fp32 against double: depth within 2e-7 relative (two roundings of (a z + b) / (c z + d))
+// and the sky (any value outside [0, 1) after the conversion) exactly 1; normals within one RG16
+// SNORM step (1/32767) plus 1e-6 (normalize, encode).
+TEST_F(IndirectLightingApiTest, GBufferConvertMatchesItsTwin) {
+  const uint32_t w = 16, h = 4;
+  std::vector<float> depth(w * h);
+  std::vector<uint16_t> halfNormals(4 * w * h);
+  std::vector<float> normalValues(4 * w * h);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  const float special[] = {0.0f, 1.0f, 0.5f, 1e-7f, 0.9999999f, -2.0f,
+                           std::numeric_limits<float>::infinity(), 37.5f};
+  for (uint32_t i = 0; i < w * h; ++i) {
+    depth[i] = i < 8 ? special[i] : (i % 2 ? 0.25f + 0.7f * (unit(rng) * 0.5f + 0.5f)
+                                           : 0.1f + 20.0f * (unit(rng) * 0.5f + 0.5f));
+    glm::vec3 n(unit(rng), unit(rng), unit(rng));
+    if (i == 9) n = glm::vec3(0.0f);
+    for (int c = 0; c < 3; ++c) {
+      halfNormals[4 * i + c] = glm::packHalf1x16(n[c]);
+      normalValues[4 * i + c] = glm::unpackHalf1x16(halfNormals[4 * i + c]);
+    }
+  }
+  auto image = [&](VkFormat format, const void* data, size_t bytes) {
+    engine::ImageDesc desc;
+    desc.width = w;
+    desc.height = h;
+    desc.format = format;
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    auto i = std::make_unique<engine::Image>(ctx(), desc);
+    i->upload(ctx(), data, bytes);
+    return i;
+  };
+  const auto depthImage = image(VK_FORMAT_R32_SFLOAT, depth.data(), 4 * w * h);
+  const auto normalImage = image(VK_FORMAT_R16G16B16A16_SFLOAT, halfNormals.data(), 8 * w * h);
+  const glm::mat4 proj = view_.proj;
+  gi::GBufferConvert convert(ctx(), w, h);
+  for (uint32_t encoding : {GBUFFER_DEPTH_NDC, GBUFFER_DEPTH_REVERSED_NDC,
+                            GBUFFER_DEPTH_VIEW_DISTANCE}) {
+    for (uint32_t normals : {GBUFFER_NORMAL_WORLD_SIGNED, GBUFFER_NORMAL_WORLD_UNSIGNED}) {
+      SCOPED_TRACE("depth " + std::to_string(encoding) + ", normals " + std::to_string(normals));
+      gpu::GBufferConvertPush push{};
+      push.depthRow = glm::vec4(proj[2][2], proj[3][2], proj[2][3], proj[3][3]);
+      push.viewport = {w, h};
+      push.depthEncoding = encoding;
+      push.normalEncoding = normals;
+      ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        engine::imageBarrier(cmd, *depthImage, VK_IMAGE_LAYOUT_GENERAL);
+        engine::imageBarrier(cmd, *normalImage, VK_IMAGE_LAYOUT_GENERAL);
+        convert.record(cmd, *depthImage, *normalImage, push, nullptr);
+      });
+      const auto outDepth = convert.depth().readback(ctx());
+      const auto outNormal = convert.normal().readback(ctx());
+      for (uint32_t i = 0; i < w * h; ++i) {
+        float gd;
+        std::memcpy(&gd, outDepth.data() + 4 * i, 4);
+        const double rd = gi::forwardDepthReference(encoding, depth[i], glm::dvec4(push.depthRow));
+        if (rd >= 1.0)
+          EXPECT_EQ(gd, 1.0f) << "texel " << i;
+        else
+          EXPECT_NEAR(gd, rd, 2e-7 * std::abs(rd) + 1e-12) << "texel " << i;
+        int16_t e[2];
+        std::memcpy(e, outNormal.data() + 4 * i, 4);
+        const glm::dvec4 stored(normalValues[4 * i], normalValues[4 * i + 1],
+                                normalValues[4 * i + 2], 0.0);
+        const glm::dvec2 rn =
+            gd >= 1.0f ? glm::dvec2(0.0) : gi::octahedralReference(normals, stored);
+        for (int c = 0; c < 2; ++c)
+          EXPECT_NEAR(std::max(e[c] / 32767.0, -1.0), rn[c], 1.0 / 32767.0 + 1e-6)
+              << "texel " << i << " component " << c;
+      }
+    }
   }
 }
 

@@ -71,7 +71,8 @@ class Image {
 class Sampler {
  public:
   Sampler() = default;
-  explicit Sampler(Context& ctx, VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT);
+  explicit Sampler(Context& ctx, VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+                   VkFilter filter = VK_FILTER_LINEAR);
   static Sampler borrow(VkSampler sampler);  // non-owning, like Image::borrow
   ~Sampler();
   Sampler(Sampler&& other) noexcept;

@@ -61,10 +61,28 @@ struct ImageRef {
 //                                 mix(s, 1, metallic) with KHR_materials_specular's strength s
 //                                 and colour c (1 without it). F0 = F90 = 0: no glossy term.
 // The module leaves all four in VK_IMAGE_LAYOUT_GENERAL (also reported in FrameOutput).
+// Depth and normal may come as the host renders them instead (depthEncoding, depthFormat,
+// normalEncoding): the module then converts both first, into images of its own
+// (gbuffer_convert.comp, one small pass), and reads the host's two through sampled views, so
+// they need VK_IMAGE_USAGE_SAMPLED_BIT rather than STORAGE (a depth-aspect view for D32).
+enum class DepthEncoding : uint32_t {
+  Ndc = 0,          // Vulkan NDC depth of a forward projection: near 0, far 1; 1 = sky
+  ReversedNdc = 1,  // reversed-Z: Camera::proj maps near to 1 and far (or infinity) to 0; 0 = sky
+  ViewDistance = 2  // metres along the view axis (-z of Camera::view), Camera::proj forward;
+                    // 0, negative or non-finite = sky
+};
+enum class NormalEncoding : uint32_t {
+  Octahedral = 0,    // R16G16_SNORM, octahedral (as above)
+  WorldSigned = 1,   // rgb = the world-space unit normal (a float or SNORM format); 0 = sky
+  WorldUnsigned = 2  // rgb = normal * 0.5 + 0.5 (a UNORM format: RGBA8, A2B10G10R10)
+};
 struct GBufferImages {
   uint32_t width = 0;
   uint32_t height = 0;
   ImageRef depth, normal, diffuse, specular;
+  DepthEncoding depthEncoding = DepthEncoding::Ndc;
+  VkFormat depthFormat = VK_FORMAT_R32_SFLOAT;  // or VK_FORMAT_D32_SFLOAT
+  NormalEncoding normalEncoding = NormalEncoding::Octahedral;
 };
 
 // Scene geometry in host buffers, read by the module's light-view rasteriser (the RSM) and by
