@@ -176,8 +176,8 @@ Sampler::Sampler(Context& ctx, VkSamplerAddressMode address, VkFilter filter)
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = filter;
   info.minFilter = filter;
-  info.mipmapMode = filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR
-                                               : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.mipmapMode =
+      filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
   info.addressModeU = address;
   info.addressModeV = address;
   info.addressModeW = address;

@@ -219,7 +219,8 @@ ReferenceRaster rasterizeReference(const Scene& scene, const RasterTransform& tr
     rejected = rejected || (v[0].z < 0.0f && v[1].z < 0.0f && v[2].z < 0.0f);
     rejected = rejected || (v[0].z > v[0].w && v[1].z > v[1].w && v[2].z > v[2].w);
     if (rejected) continue;
-    c.cutout = cutouts.any() ? stageCutout(scene, cutouts, transform, width, height, tri) : Cutout{};
+    c.cutout =
+        cutouts.any() ? stageCutout(scene, cutouts, transform, width, height, tri) : Cutout{};
 
     bool inside = true;
     for (int k = 0; k < 5; ++k)

@@ -96,11 +96,11 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
                               0,
                               0,
                               0};
-    setup_.dispatch(cmd,
-                    {Binding::storage(scene.vertices), Binding::storage(scene.indices),
-                     Binding::storage(triangles_), Binding::storage(counters_),
-                     Binding::storage(groupAreas_)},
-                    push, groupCount(scene.triangleCount, RASTER_GROUP_SIZE));
+    setup_.dispatch(
+        cmd,
+        {Binding::storage(scene.vertices), Binding::storage(scene.indices),
+         Binding::storage(triangles_), Binding::storage(counters_), Binding::storage(groupAreas_)},
+        push, groupCount(scene.triangleCount, RASTER_GROUP_SIZE));
     computeBarrier(cmd);
   }
   {
@@ -111,15 +111,15 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
                                   capacity_,
                                   scene.materialCount};
     (scene.alphaCutouts ? alphaCoverage_ : coverage_)
-        .dispatchIndirect(cmd,
-                          {Binding::storage(triangles_), Binding::storage(counters_),
-                           Binding::storage(*target.visibility, target.offset, visBytes),
-                           Binding::storage(scene.vertices), Binding::storage(scene.indices),
-                           Binding::storage(scene.triangleMaterials),
-                           Binding::storage(scene.materials),
-                           Binding::sampled(scene.baseColorTextures, scene.sampler.handle()),
-                           Binding::storage(groupAreas_)},
-                          push, counters_, offsetof(gpu::RasterCounters, groupsX));
+        .dispatchIndirect(
+            cmd,
+            {Binding::storage(triangles_), Binding::storage(counters_),
+             Binding::storage(*target.visibility, target.offset, visBytes),
+             Binding::storage(scene.vertices), Binding::storage(scene.indices),
+             Binding::storage(scene.triangleMaterials), Binding::storage(scene.materials),
+             Binding::sampled(scene.baseColorTextures, scene.sampler.handle()),
+             Binding::storage(groupAreas_)},
+            push, counters_, offsetof(gpu::RasterCounters, groupsX));
     computeBarrier(cmd);
   }
 }

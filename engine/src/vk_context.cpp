@@ -99,8 +99,9 @@ std::string missingFeature(const VkPhysicalDeviceFeatures2& features) {
                                 ->synchronization2 == VK_TRUE;
         break;
       case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
-        maintenance4 |= reinterpret_cast<const VkPhysicalDeviceMaintenance4Features*>(s)
-                            ->maintenance4 == VK_TRUE;
+        maintenance4 |=
+            reinterpret_cast<const VkPhysicalDeviceMaintenance4Features*>(s)->maintenance4 ==
+            VK_TRUE;
         break;
       default:
         break;

@@ -13,7 +13,6 @@
 #include "engine/commands.h"
 #include "engine/rasterizer.h"
 #include "light_validation.h"
-#include "shared/scene_data.h"
 #include "passes/adaptive_shading.h"
 #include "passes/brsm_pdf.h"
 #include "passes/env_fis.h"
@@ -24,6 +23,7 @@
 #include "passes/kmeans.h"
 #include "passes/vsgl_allocation.h"
 #include "passes/vsgl_shade.h"
+#include "shared/scene_data.h"
 #include "shared/vsgl_shade.h"
 
 namespace gi {
@@ -97,7 +97,8 @@ void acquireHostImages(VkCommandBuffer cmd, engine::GBuffer& g, bool depthAspect
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image->handle();
     const bool depth = depthAspect && image == &g.depth;
-    b.subresourceRange = {depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    b.subresourceRange = {depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0,
+                          1};
     barriers.push_back(b);
     image->setLayout(VK_IMAGE_LAYOUT_GENERAL);
   }
@@ -329,13 +330,13 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
           "FrameInput.gbuffer: every image needs its VkImage, VkImageView and current layout "
           "(not UNDEFINED)");
   if (g.depthEncoding > DepthEncoding::ViewDistance)
-    throw engine::Error("FrameInput.gbuffer.depthEncoding: " +
-                        std::to_string(uint32_t(g.depthEncoding)) +
-                        " is none of Ndc, ReversedNdc, ViewDistance");
+    throw engine::Error(
+        "FrameInput.gbuffer.depthEncoding: " + std::to_string(uint32_t(g.depthEncoding)) +
+        " is none of Ndc, ReversedNdc, ViewDistance");
   if (g.normalEncoding > NormalEncoding::WorldUnsigned)
-    throw engine::Error("FrameInput.gbuffer.normalEncoding: " +
-                        std::to_string(uint32_t(g.normalEncoding)) +
-                        " is none of Octahedral, WorldSigned, WorldUnsigned");
+    throw engine::Error(
+        "FrameInput.gbuffer.normalEncoding: " + std::to_string(uint32_t(g.normalEncoding)) +
+        " is none of Octahedral, WorldSigned, WorldUnsigned");
   if (g.depthFormat != VK_FORMAT_R32_SFLOAT && g.depthFormat != VK_FORMAT_D32_SFLOAT)
     throw engine::Error("FrameInput.gbuffer.depthFormat: " + std::to_string(g.depthFormat) +
                         " is neither VK_FORMAT_R32_SFLOAT nor VK_FORMAT_D32_SFLOAT");
@@ -610,7 +611,8 @@ std::string outOfRange(const char* field, std::span<const uint32_t> data, uint32
 std::string validateGeometry(const SceneGeometry& s) {
   if (s.triangleCount == 0) return "SceneGeometry.triangleCount: 0 (nothing to light)";
   if (s.vertexCount == 0) return "SceneGeometry.vertexCount: 0 (the vertices' count is needed)";
-  if (s.materialCount == 0) return "SceneGeometry.materialCount: 0 (the materials' count is needed)";
+  if (s.materialCount == 0)
+    return "SceneGeometry.materialCount: 0 (the materials' count is needed)";
   for (const std::string& bad :
        {bufferTooSmall("vertexBytes", s.vertexBytes, s.vertexCount, sizeof(gpu::SceneVertex),
                        "vertices"),

@@ -63,9 +63,9 @@ class Rasterizer {
   ComputeProgram setup_;
   ComputeProgram coverage_;
   ComputeProgram alphaCoverage_;  // with the alpha test, for scenes with SceneGpu::alphaCutouts
-  Buffer triangles_;   // gpu::RasterTriangle list
-  Buffer groupAreas_;  // pixel-box area per RASTER_GROUP_SIZE entries of the list
-  Buffer counters_;   // gpu::RasterCounters
+  Buffer triangles_;              // gpu::RasterTriangle list
+  Buffer groupAreas_;             // pixel-box area per RASTER_GROUP_SIZE entries of the list
+  Buffer counters_;               // gpu::RasterCounters
   uint32_t capacity_ = 0;
 };
 

@@ -206,8 +206,8 @@ struct Settings {
   // per-view passes, BRSM evaluation included (measured 5.7x, 48 -> 273 ms at 256^2 on lavapipe;
   // docs/techniques/point-lights.md).
   uint32_t rsmSize = 256;
-  // Creation. Largest VSGL count this instance will be asked for, [1, kMaxVsglCount]; sizes the VSGL
-  // buffer and the ISM atlas. 0 = vsglCount.
+  // Creation. Largest VSGL count this instance will be asked for, [1, kMaxVsglCount]; sizes the
+  // VSGL buffer and the ISM atlas. 0 = vsglCount.
   uint32_t maxVsglCount = 0;
   // VSGLs per frame N, [1, maxVsglCount] ([S3]: 1024). Cost ~ N x pixels in shading (the
   // dominant pass) and ~ N in the ISM build.
