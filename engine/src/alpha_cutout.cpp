@@ -61,4 +61,12 @@ bool AlphaCutouts::opaque(uint32_t material, glm::vec2 uv) const {
   return alpha >= cutoff;
 }
 
+bool AlphaCutouts::opaqueAt(uint32_t material, const glm::vec2 vertexUvs[3],
+                            glm::vec2 barycentrics) const {
+  if (!tested(material)) return true;
+  glm::vec2 c[3];
+  for (int k = 0; k < 3; ++k) c[k] = coordinates(material, vertexUvs[k]);
+  return opaque(material, c[0] + barycentrics.x * (c[1] - c[0]) + barycentrics.y * (c[2] - c[0]));
+}
+
 }  // namespace engine

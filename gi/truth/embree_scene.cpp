@@ -20,20 +20,19 @@ struct Cutouts {
   std::vector<uint32_t> triangleMaterial;
 
   Cutouts(engine::AlphaCutouts cutouts, const engine::Scene& scene)
-      : test(std::move(cutouts)), uvs(scene.uvs), indices(scene.indices),
+      : test(std::move(cutouts)),
+        uvs(scene.uvs),
+        indices(scene.indices),
         triangleMaterial(scene.triangleMaterial) {
     uvs.resize(scene.positions.size(), glm::vec2(0.0f));
   }
 
-  // Whether the surface exists at barycentrics (u, v) of `triangle`, as the rasterizer decides
-  // it: base colour coordinates per corner, interpolated in fp32.
+  // Whether the surface exists at barycentrics (u, v) of `triangle` (the alpha test's rule).
   bool keeps(uint32_t triangle, float u, float v) const {
-    const uint32_t material = triangleMaterial[triangle];
-    if (!test.tested(material)) return true;
-    glm::vec2 c[3];
-    for (int k = 0; k < 3; ++k)
-      c[k] = test.coordinates(material, uvs[indices[3 * size_t{triangle} + k]]);
-    return test.opaque(material, c[0] * (1.0f - u - v) + c[1] * u + c[2] * v);
+    const glm::vec2 corners[3] = {uvs[indices[3 * size_t{triangle}]],
+                                  uvs[indices[3 * size_t{triangle} + 1]],
+                                  uvs[indices[3 * size_t{triangle} + 2]]};
+    return test.opaqueAt(triangleMaterial[triangle], corners, glm::vec2(u, v));
   }
 };
 

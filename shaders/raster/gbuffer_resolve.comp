@@ -109,17 +109,10 @@ void main() {
 
   vec3 normal = normalize(nA.xyz * (1.0 - bc.x - bc.y) + nB.xyz * bc.x + nC.xyz * bc.y);
   uint material = triangleMaterial[tri];
-  // A host's material index past its buffer: no reflectance (the surface still has its depth).
-  if (material >= pc.materialCount) {
-    imageStore(outDepth, coord, vec4(depth));
-    imageStore(outNormal, coord, vec4(octEncode(normal), 0.0, 0.0));
-    imageStore(outDiffuse, coord, vec4(0.0, 0.0, 0.0, 1.0));
-    imageStore(outSpecular, coord, vec4(0.0));
-    imageStore(outEmission, coord, vec4(0.0));
-    return;
-  }
+  // A host's material index past its buffer is never read: no normal map, no reflectance below.
+  bool known = material < pc.materialCount;
   // The normal map perturbs the front's normal (a back face then shows its negation).
-  int normalLayer = materials[material].normalLayer;
+  int normalLayer = known ? materials[material].normalLayer : -1;
   if (normalLayer >= 0) {
     vec3 u = materials[material].normalUvU.xyz, v = materials[material].normalUvV.xyz;
     vec3 mapped = textureGrad(metallicRoughnessTextures,
@@ -136,8 +129,8 @@ void main() {
   if (back) normal = -normal;
 
   // In a light's view the back of a single-sided surface is no surface (glTF doubleSided false):
-  // it keeps its depth, so it shadows, and reflects nothing.
-  if (back && pc.backFaces == 1u && materials[material].doubleSided == 0u) {
+  // it keeps its depth, so it shadows, and reflects nothing; so does an unknown material.
+  if (!known || (back && pc.backFaces == 1u && materials[material].doubleSided == 0u)) {
     imageStore(outDepth, coord, vec4(depth));
     imageStore(outNormal, coord, vec4(octEncode(normal), 0.0, 0.0));
     imageStore(outDiffuse, coord, vec4(0.0, 0.0, 0.0, 1.0));

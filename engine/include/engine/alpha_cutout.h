@@ -33,6 +33,10 @@ class AlphaCutouts {
   // Whether the surface of `material` exists at base colour coordinates `uv` (true for a
   // material that is not alpha-tested, and for non-finite coordinates).
   bool opaque(uint32_t material, glm::vec2 uv) const;
+  // The same at barycentrics (b1, b2) of a triangle whose corners carry `vertexUvs`: each
+  // corner's coordinates, then c0 + b1 (c1 - c0) + b2 (c2 - c0) in fp32 (ism_points.comp's
+  // order; the path tracer's hits use it too).
+  bool opaqueAt(uint32_t material, const glm::vec2 vertexUvs[3], glm::vec2 barycentrics) const;
 
  private:
   struct Mask {

@@ -61,17 +61,14 @@ void ismCutPointsReference(std::vector<IsmPointReference>& points, const engine:
   if (!cutouts.any()) return;
   for (IsmPointReference& p : points) {
     if (p.triangle == ISM_NO_TRIANGLE) continue;
-    const uint32_t material = scene.triangleMaterial[p.triangle];
-    if (!cutouts.tested(material)) continue;
     glm::vec2 uv[3];
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = scene.indices[3 * size_t{p.triangle} + k];
-      uv[k] = cutouts.coordinates(material, v < scene.uvs.size() ? scene.uvs[v] : glm::vec2(0.0f));
+      uv[k] = v < scene.uvs.size() ? scene.uvs[v] : glm::vec2(0.0f);
     }
     const glm::vec2 b(std::round(p.bary.x * 65535.0) / 65535.0,
                       std::round(p.bary.y * 65535.0) / 65535.0);
-    if (!cutouts.opaque(material, uv[0] + b.x * (uv[1] - uv[0]) + b.y * (uv[2] - uv[0])))
-      p = IsmPointReference{};
+    if (!cutouts.opaqueAt(scene.triangleMaterial[p.triangle], uv, b)) p = IsmPointReference{};
   }
 }
 
