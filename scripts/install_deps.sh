@@ -13,6 +13,9 @@ packages=(
   libdraco-dev libmeshoptimizer-dev       # glTF KHR_draco_mesh_compression, EXT_meshopt_compression
   libopenimageio-dev                      # EXR / PNG / texture I/O
   libembree-dev                           # ray tracing for the CPU ground truth (gi/truth)
+  libglfw3-dev libimgui-dev libstb-dev    # the interactive viewer: window, input, panel
+  xvfb xauth                              # a display for the viewer's tests (xvfb-run)
+  openimageio-tools                       # idiff: the viewer's tests compare images
   gnuplot-nox                             # the benchmark's charts (scripts/bench_charts.sh)
   time                                    # peak memory in scripts/load_bench.sh
   libgtest-dev                            # tests

@@ -82,25 +82,34 @@ DirectLighting::DirectLighting(Context& ctx, const Scene& scene,
   if (settings.shadowResolution < 16 || settings.shadowResolution > 4096)
     throw Error("shadow resolution " + std::to_string(settings.shadowResolution) +
                 " outside [16, 4096]");
+  // Full-size uniform buffers: the shader declares fixed-size arrays, so new lights fit them.
+  lights_ = Buffer(ctx, DIRECT_MAX_LIGHTS * sizeof(gpu::GpuLight),
+                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::GpuOnly);
+  views_ = Buffer(ctx, DIRECT_MAX_SHADOW_VIEWS * sizeof(gpu::ShadowView),
+                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::GpuOnly);
+  upload(ctx, scene);
+}
+
+void DirectLighting::setLights(Context& ctx, const Scene& scene) {
+  setup_ = buildLightSetup(scene, settings_);
+  upload(ctx, scene);
+}
+
+void DirectLighting::upload(Context& ctx, const Scene& scene) {
   if (setup_.lights.size() > DIRECT_MAX_LIGHTS || setup_.views.size() > DIRECT_MAX_SHADOW_VIEWS)
     throw Error(scene.source + ": " + std::to_string(setup_.lights.size()) + " lights with " +
                 std::to_string(setup_.views.size()) + " shadow views; direct lighting supports " +
                 std::to_string(DIRECT_MAX_LIGHTS) + " lights and " +
                 std::to_string(DIRECT_MAX_SHADOW_VIEWS) + " shadow views");
-  // Full-size uniform buffers: the shader declares fixed-size arrays.
-  auto makeUniform = [&](const void* data, size_t bytes, size_t capacity) {
-    Buffer b(ctx, capacity, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::GpuOnly);
-    b.upload(ctx, data, bytes);
-    return b;
-  };
-  lights_ = makeUniform(setup_.lights.data(), setup_.lights.size() * sizeof(gpu::GpuLight),
-                        DIRECT_MAX_LIGHTS * sizeof(gpu::GpuLight));
-  views_ = makeUniform(setup_.views.data(), setup_.views.size() * sizeof(gpu::ShadowView),
-                       DIRECT_MAX_SHADOW_VIEWS * sizeof(gpu::ShadowView));
-  VkDeviceSize mapBytes =
-      Rasterizer::visibilityBytes(settings.shadowResolution, settings.shadowResolution);
-  shadowMaps_ = Buffer(ctx, std::max<VkDeviceSize>(mapBytes * setup_.views.size(), 16),
-                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
+  if (!setup_.lights.empty())
+    lights_.upload(ctx, setup_.lights.data(), setup_.lights.size() * sizeof(gpu::GpuLight));
+  if (!setup_.views.empty())
+    views_.upload(ctx, setup_.views.data(), setup_.views.size() * sizeof(gpu::ShadowView));
+  const VkDeviceSize mapBytes =
+      Rasterizer::visibilityBytes(settings_.shadowResolution, settings_.shadowResolution);
+  const VkDeviceSize bytes = std::max<VkDeviceSize>(mapBytes * setup_.views.size(), 16);
+  if (shadowMaps_.size() < bytes)
+    shadowMaps_ = Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
 }
 
 void DirectLighting::record(VkCommandBuffer cmd, const SceneGpu& scene, Rasterizer& rasterizer,

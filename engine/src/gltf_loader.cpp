@@ -218,15 +218,11 @@ void SceneBuilder::traverseNodes() {
 
 void SceneBuilder::addCamera(int cameraIndex, const glm::dmat4& world, const std::string& where) {
   Camera camera = at(cameras_, cameraIndex, "camera", where);
-  // Scale (and a mirror) would skew the view: keep the viewing axis -Z exact, then make Y
-  // orthogonal to it and X = Y x Z, a right-handed orthonormal frame.
-  const auto z = tryNormalize(glm::dvec3(world[2]));
-  const auto y = z ? tryNormalize(glm::dvec3(world[1]) - glm::dot(glm::dvec3(world[1]), *z) * *z)
-                   : std::nullopt;
-  if (!z || !y) fail(where + ": camera node has a degenerate transform");
-  const glm::dvec3 x = glm::cross(*y, *z);
-  camera.cameraToWorld =
-      glm::mat4(glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(*y, 0.0), glm::dvec4(*z, 0.0), world[3]));
+  // The node's world matrix as floats first: a .gltf written from a camera (vsgl_viewer's
+  // screenshots) then reads back bit for bit.
+  const std::optional<glm::mat4> frame = rigidCameraFrame(glm::mat4(world));
+  if (!frame) fail(where + ": camera node has a degenerate transform");
+  camera.cameraToWorld = *frame;
   scene_.cameras.push_back(std::move(camera));
 }
 
@@ -244,9 +240,12 @@ void SceneBuilder::addLight(const tinygltf::Node& node, const glm::dmat4& world,
   }
   Light light = at(lights_, static_cast<int>(index), "light", where);
   light.position = glm::vec3(world[3]);
-  const auto direction = tryNormalize(glm::dvec3(world * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
+  // -Z of the node's world matrix as floats, kept as written when it is a unit vector: a light
+  // written by writeGltf reads back with the same direction to the bit.
+  const auto direction =
+      fileLightDirection(glm::vec3(glm::mat4(world) * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)));
   if (!direction) fail(where + ": light node has a degenerate transform");
-  light.direction = glm::vec3(*direction);
+  light.direction = *direction;
   scene_.lights.push_back(std::move(light));
 }
 

@@ -149,9 +149,10 @@ json matrixJson(const glm::mat4& m) {
   return values;  // column-major, as glTF expects
 }
 
-// A node frame whose -Z is `direction` (KHR_lights_punctual lights shine down -Z).
+// A node frame whose -Z is `direction` (KHR_lights_punctual lights shine down -Z), stored as
+// fileLightDirection keeps it so that the loader reads back the same floats.
 glm::mat4 lightFrame(const Light& light) {
-  const glm::vec3 z = -glm::normalize(light.direction);
+  const glm::vec3 z = -fileLightDirection(light.direction).value_or(glm::vec3(0.0f, 0.0f, -1.0f));
   const glm::vec3 up =
       std::abs(z.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 x = glm::normalize(glm::cross(up, z));

@@ -28,6 +28,39 @@ Bounds Scene::bounds() const {
   return b;
 }
 
+std::optional<glm::mat4> rigidCameraFrame(const glm::mat4& floats) {
+  const glm::dmat4 world(floats);
+  // Already rigid to float precision (a frame this function or a host made): kept as its
+  // floats, so that a camera written to a file and read back is the same camera to the bit.
+  const glm::dvec3 cx(world[0]), cy(world[1]), cz(world[2]);
+  auto near = [](double a, double b) { return std::abs(a - b) <= 1e-6; };
+  if (near(glm::dot(cx, cx), 1.0) && near(glm::dot(cy, cy), 1.0) && near(glm::dot(cz, cz), 1.0) &&
+      near(glm::dot(cx, cy), 0.0) && near(glm::dot(cy, cz), 0.0) && near(glm::dot(cz, cx), 0.0) &&
+      glm::dot(glm::cross(cx, cy), cz) > 0.0 && world[0][3] == 0.0 && world[1][3] == 0.0 &&
+      world[2][3] == 0.0 && world[3][3] == 1.0)
+    return floats;
+  // Z, the viewing axis, keeps its direction exactly; Y is its nearest orthogonal direction.
+  auto unit = [](const glm::dvec3& v) -> std::optional<glm::dvec3> {
+    const double length = glm::length(v);
+    if (!(length > 0.0) || !std::isfinite(length)) return std::nullopt;
+    return v / length;
+  };
+  const auto z = unit(glm::dvec3(world[2]));
+  if (!z) return std::nullopt;
+  const auto y = unit(glm::dvec3(world[1]) - glm::dot(glm::dvec3(world[1]), *z) * *z);
+  if (!y) return std::nullopt;
+  const glm::dvec3 x = glm::cross(*y, *z);
+  return glm::mat4(
+      glm::dmat4(glm::dvec4(x, 0.0), glm::dvec4(*y, 0.0), glm::dvec4(*z, 0.0), world[3]));
+}
+
+std::optional<glm::vec3> fileLightDirection(const glm::vec3& direction) {
+  const double length = glm::length(glm::dvec3(direction));
+  if (!(length > 0.0) || !std::isfinite(length)) return std::nullopt;
+  if (std::abs(length - 1.0) <= 1e-6) return direction;
+  return glm::vec3(glm::dvec3(direction) / length);
+}
+
 Camera defaultCamera(const Scene& scene) {
   // Frames the bounding sphere of the bounding box: at distance r / sin(yfov / 2) the sphere
   // touches the top and bottom of the view, so any aspect ratio >= 1 shows all of it.

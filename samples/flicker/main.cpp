@@ -41,7 +41,9 @@ using nlohmann::json;
 struct Options {
   std::string scene = "checker";
   std::string motion = "orbit";
+  std::string path;  // --path FILE: the recorded view path of --motion path
   uint32_t frames = 16;
+  bool framesGiven = false;  // a path sets the frame count; an explicit one must agree with it
   uint32_t width = 160, height = 90;
   uint32_t count = 128;
   uint32_t block = 8;
@@ -53,6 +55,7 @@ struct Options {
   float noise = 0.05f;
   std::string outDir = "flicker";
   samples::LightChoice light = samples::LightChoice::Auto;
+  bool lightGiven = false;
   std::string camera;             // "" = the first
   samples::CommonOptions common;  // --device, --validation, --help
 };
@@ -62,9 +65,14 @@ const char* usage() {
          "  --scene NAME|FILE  built-in scene (cornell, atrium, checker, lounge) or .gltf/.glb "
          "(default "
          "checker)\n"
-         "  --motion M         static, orbit (camera), sweep (light) or move (a box) (default "
-         "orbit)\n" SAMPLES_LIGHT_USAGE SAMPLES_CAMERA_USAGE
-         "  --frames N         frames in the sequence, 2..1000 (default 16)\n"
+         "  --motion M         static, orbit (camera), sweep (light), move (a box) or path (a\n"
+         "                     recorded view path) (default orbit)\n"
+         "  --path FILE        the view path --motion path replays (vsgl_viewer records it): its\n"
+         "                     cameras and lights, which replace the scene's (--light is not\n"
+         "                     applied); the sequence has its frames\n" SAMPLES_LIGHT_USAGE
+             SAMPLES_CAMERA_USAGE
+         "  --frames N         frames in the sequence, 2..1000 (default 16; with --path, the\n"
+         "                     file's)\n"
          "  --width N --height N  image size, 1..4096 (default 160x90)\n"
          "  --count N          VSGLs, 1..32768 (default 128)\n"
          "  --warmup N         frames of the first frame each method renders first, 0..1000\n"
@@ -93,15 +101,19 @@ Options parseOptions(int argc, char** argv) {
     const std::string_view arg = args.option();
     if (arg == "--scene")
       o.scene = args.value();
-    else if (arg == "--light")
+    else if (arg == "--light") {
       o.light = samples::parseLightChoice(arg, args.value());
-    else if (arg == "--camera")
+      o.lightGiven = true;
+    } else if (arg == "--camera")
       o.camera = args.value();
     else if (arg == "--motion")
       o.motion = args.value();
-    else if (arg == "--frames")
+    else if (arg == "--path")
+      o.path = args.value();
+    else if (arg == "--frames") {
       o.frames = samples::parseUint(arg, args.value(), 2, 1000);
-    else if (arg == "--width")
+      o.framesGiven = true;
+    } else if (arg == "--width")
       o.width = samples::parseUint(arg, args.value(), 1, 4096);
     else if (arg == "--height")
       o.height = samples::parseUint(arg, args.value(), 1, 4096);
@@ -129,6 +141,10 @@ Options parseOptions(int argc, char** argv) {
       samples::parseCommonOption(arg, args, o.common);
   }
   if (o.outDir.empty()) throw engine::Error("--out: empty path");
+  if (o.motion == "path" && o.path.empty())
+    throw engine::Error("--motion path: needs --path FILE (the view path to replay)");
+  if (o.motion != "path" && !o.path.empty())
+    throw engine::Error("--path: only with --motion path (not --motion " + o.motion + ")");
   if (o.block > std::min(o.width, o.height))
     throw engine::Error("--block: " + std::to_string(o.block) + " is larger than the image");
   return o;
@@ -205,18 +221,46 @@ struct Capture {
   std::vector<std::vector<uint8_t>> preview;  // tone-mapped, at the previewFrames
 };
 
-int run(const Options& o) {
+// The recorded frames of --path, checked before any work: the sequence takes their count, and
+// every frame must have a light to bounce (the path's lights replace the scene's).
+std::vector<samples::PathFrame> readPath(Options& o) {
+  std::vector<samples::PathFrame> path = samples::readViewPath(o.path);
+  const auto count = static_cast<uint32_t>(path.size());
+  if (o.framesGiven && o.frames != count)
+    throw engine::Error("--frames " + std::to_string(o.frames) + ": --path " + o.path + " has " +
+                        std::to_string(count) + " frames");
+  if (count < 2) throw engine::Error("--path " + o.path + ": 1 frame; a capture needs 2 at least");
+  o.frames = count;
+  for (uint32_t t = 0; t < count; ++t) {
+    const size_t n = path[t].lights.size();
+    if (n == 0 || n > gi::kMaxLights)
+      throw engine::Error("--path " + o.path + ": frame " + std::to_string(t) + " has " +
+                          std::to_string(n) + " lights; the module bounces 1 to " +
+                          std::to_string(gi::kMaxLights));
+  }
+  return path;
+}
+
+int run(Options o) {
   if (o.common.help) {
     std::printf("%s", usage());
     return 0;
   }
   const flicker::Motion motion = flicker::parseMotion(o.motion);
+  std::vector<samples::PathFrame> path;
+  if (motion == flicker::Motion::Path) path = readPath(o);
   engine::Scene base = samples::loadScene(o.scene);
   samples::selectCamera(base, o.camera);
-  const std::string lightNote =
-      samples::applyLightChoice(base, o.light, false, float(o.width) / float(o.height));
-  if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
-  const std::vector<uint32_t> lights = samples::bouncingLights(base);
+  if (motion == flicker::Motion::Path) {
+    if (o.lightGiven)
+      std::printf("--light: not applied: the lights recorded in %s replace the scene's\n",
+                  o.path.c_str());
+  } else {
+    const std::string lightNote =
+        samples::applyLightChoice(base, o.light, false, float(o.width) / float(o.height));
+    if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
+    samples::bouncingLights(base);  // fails before any work
+  }
   if (motion == flicker::Motion::Sweep) flicker::sweptLight(base);  // fails before any work
   std::vector<gi::Settings> settings;
   for (const std::string& word : o.methods) settings.push_back(methodSettings(word, o));
@@ -244,7 +288,9 @@ int run(const Options& o) {
   csv << "frame,method,image_flicker,vsgl_power_change,relative_mse\n";
 
   for (uint32_t t = 0; t < o.frames; ++t) {
-    const flicker::Frame f = flicker::makeFrame(base, motion, t, o.frames, o.width, o.height);
+    const flicker::Frame f = flicker::makeFrame(base, motion, t, o.frames, o.width, o.height,
+                                                motion == flicker::Motion::Path ? &path : nullptr);
+    const std::vector<uint32_t> lights = samples::bouncingLights(f.scene);  // a path's vary
     if (!gpuScene || motion == flicker::Motion::Move)  // every earlier submission has completed
       gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, f.scene));
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -334,6 +380,7 @@ int run(const Options& o) {
                   {"count", o.count},         {"pdf", o.pdf},
                   {"reference", o.reference}, {"block", o.block},
                   {"methods", json::array()}};
+  if (motion == flicker::Motion::Path) summary["path"] = o.path;
   const double pairs = double(o.frames - 1);
   std::printf("%-14s %14s %18s %12s\n", "method", "image flicker", "VSGL power change",
               "mean relMSE");

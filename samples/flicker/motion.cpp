@@ -1,6 +1,7 @@
 #include "motion.h"
 
 #include <algorithm>
+#include <cassert>
 #include <glm/gtc/matrix_transform.hpp>
 #include <utility>
 
@@ -67,7 +68,8 @@ Motion parseMotion(const std::string& word) {
   if (word == "orbit") return Motion::Orbit;
   if (word == "sweep") return Motion::Sweep;
   if (word == "move") return Motion::Move;
-  throw engine::Error("--motion: '" + word + "' is not one of static, orbit, sweep, move");
+  if (word == "path") return Motion::Path;
+  throw engine::Error("--motion: '" + word + "' is not one of static, orbit, sweep, move, path");
 }
 
 uint32_t sweptLight(const engine::Scene& scene) {
@@ -79,7 +81,7 @@ uint32_t sweptLight(const engine::Scene& scene) {
 }
 
 Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t frames,
-                uint32_t width, uint32_t height) {
+                uint32_t width, uint32_t height, const std::vector<samples::PathFrame>* path) {
   Frame f{base, {}};
   const engine::Bounds b = base.bounds();
   const glm::vec3 centre = 0.5f * (b.min + b.max), extent = b.max - b.min;
@@ -96,6 +98,12 @@ Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t f
     const float side = 0.15f * std::min(extent.x, extent.z);
     addBox(f.scene, glm::vec3(centre.x + s * extent.x / 3.0f, b.min.y, centre.z),
            glm::vec3(side, side, side));
+  }
+  if (motion == Motion::Path) {
+    assert(path && path->size() == frames);
+    const samples::PathFrame& recorded = path->at(t);
+    camera = recorded.camera;
+    f.scene.lights = recorded.lights;
   }
   f.view = engine::cameraView(camera, width, height);
   return f;

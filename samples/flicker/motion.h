@@ -7,23 +7,28 @@
 //   sweep   the first spot or directional light turns 20 degrees about the vertical axis: its
 //           RSM itself changes (every light bounces; the others stay)
 //   move    a box, added to the scene, slides across the floor (a third of the scene's width)
+//   path    a recorded view path (samples/common/view_path.h) replayed: frame t has the file's
+//           camera and lights of its frame t (the scene's own lights are replaced), so that a
+//           capture shows the flicker of a flight a person made in vsgl_viewer
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/scene.h"
 #include "engine/view.h"
+#include "view_path.h"
 
 namespace flicker {
 
-enum class Motion { Static, Orbit, Sweep, Move };
+enum class Motion { Static, Orbit, Sweep, Move, Path };
 
 // --motion's words; throws engine::Error naming them for anything else.
 Motion parseMotion(const std::string& word);
 
 struct Frame {
-  engine::Scene scene;  // with the light turned (sweep) or the box placed (move)
+  engine::Scene scene;  // with the light turned (sweep), the box placed (move) or the path's lights
   engine::View view;
 };
 
@@ -32,8 +37,9 @@ struct Frame {
 uint32_t sweptLight(const engine::Scene& scene);
 
 // Frame t of `frames` (t = 0 .. frames - 1) of `motion` applied to `base`, seen at
-// width x height.
+// width x height. `path` holds the recorded frames of Motion::Path (frames of them; nullptr for
+// the other motions).
 Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t frames,
-                uint32_t width, uint32_t height);
+                uint32_t width, uint32_t height, const std::vector<samples::PathFrame>* path);
 
 }  // namespace flicker

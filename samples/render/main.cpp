@@ -26,6 +26,7 @@
 #include "engine/view.h"
 #include "gi/indirect_lighting.h"
 #include "gi_host.h"
+#include "host_frame.h"
 #include "options.h"
 #include "pass_table.h"
 #include "program_exit.h"
@@ -68,18 +69,8 @@ int run(const render::Options& o) {
   if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
 
   engine::SceneGpu gpuScene = engine::uploadScene(ctx, scene);
-  engine::Rasterizer rasterizer(ctx);
-  engine::GBufferResolve resolve(ctx);
-  engine::DirectLighting direct(ctx, scene, {render::shadowResolutionFor(o), o.shadows});
-  engine::GBuffer gbuffer = engine::createGBuffer(ctx, o.width, o.height);
-  engine::Buffer visibility(ctx, engine::Rasterizer::visibilityBytes(o.width, o.height),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
-  engine::ImageDesc radianceDesc;
-  radianceDesc.width = o.width;
-  radianceDesc.height = o.height;
-  radianceDesc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  engine::Image radiance(ctx, radianceDesc);
-  engine::initialLayout(ctx, radiance, VK_IMAGE_LAYOUT_GENERAL);
+  samples::HostFrame host(ctx, scene, o.width, o.height,
+                          {render::shadowResolutionFor(o), o.shadows});
 
   std::optional<engine::ImageRgba32f> environment;
   if (!o.environment.empty()) environment = samples::loadEnvironment(o.environment);
@@ -97,7 +88,7 @@ int run(const render::Options& o) {
   // Without a light the module still shades the environment: no light, no VSGL pass.
   gi::FrameInput input;
   if (indirect)
-    input = samples::frameInput(gbuffer, view,
+    input = samples::frameInput(host.gbuffer(), view,
                                 std::span<const engine::Light>(scene.lights.data(), bouncing));
   if (indirect && environment) {
     samples::check(indirect->setEnvironment(
@@ -118,10 +109,7 @@ int run(const render::Options& o) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       profiler.beginFrame(cmd);
       engine::ProfileScope total(&profiler, cmd, "host frame");
-      rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, o.width, o.height},
-                        &profiler);
-      resolve.record(cmd, gpuScene, visibility, view, gbuffer, &profiler);
-      direct.record(cmd, gpuScene, rasterizer, gbuffer, view, radiance, &profiler);
+      host.record(cmd, gpuScene, view, &profiler);
       if (indirect) samples::check(indirect->record(cmd, input, &output));
     });
     if (frame < o.warmup) continue;  // lavapipe compiles pipelines at their first dispatch
@@ -174,61 +162,45 @@ int run(const render::Options& o) {
   std::string base = (std::filesystem::path(o.outDir) / stem).string();
   // Built-in scenes exist only as code; a .gltf copy lets other tools open the same scene.
   if (samples::isBuiltinScene(o.scene)) engine::writeGltf(scene, base + ".gltf");
-  engine::ImageRgba32f image = samples::readRadiance(ctx, radiance);
+  samples::FrameImages frame = samples::readFrame(ctx, host, indirect ? &output : nullptr, view,
+                                                  environment ? &*environment : nullptr);
+  const engine::ImageRgba32f& image = frame.final;
   engine::ToneMapSettings toneMap{o.exposureEv};
-  if (indirect && output.vsglCount > 0) {  // light bounced (no bounce: environment light only)
-    samples::Indirect result = samples::readIndirect(ctx, output, o.width, o.height);
-    samples::addInto(image, result.diffuse);
-    samples::addInto(image, result.glossy);
-    engine::ImageRgba32f only = result.diffuse;
-    samples::addInto(only, result.glossy);
+  if (frame.bounced) {
+    engine::ImageRgba32f only = frame.diffuse;
+    samples::addInto(only, frame.glossy);
     samples::writePair(base + "_indirect", only, toneMap);
     std::vector<uint8_t> frameRgba = engine::toneMap(image, toneMap);
     std::vector<gpu::Vsgl> vsgls = samples::readVsgls(ctx, output);
     engine::writePng(
         base + "_vsgls.png", image.width, image.height,
-        render::drawVsglLobes(frameRgba, image.width, image.height, vsgls, view.viewProj));
+        samples::drawVsglLobes(frameRgba, image.width, image.height, vsgls, view.viewProj));
     if (output.shadingLevels.image) {
       engine::writePng(
           base + "_levels.png", image.width, image.height,
-          render::levelColours(frameRgba, samples::readR32f(ctx, output.shadingLevels, o.width,
-                                                            o.height, "shading-level map")));
+          samples::levelColours(frameRgba, samples::readR32f(ctx, output.shadingLevels, o.width,
+                                                             o.height, "shading-level map")));
       std::printf(
           "wrote %s_levels.png (adaptive shading: the level each pixel's light was "
           "shaded at)\n",
           base.c_str());
     }
-    if (o.gi.ismEnabled && output.vsglCount > 0) {
+    if (o.gi.ismEnabled) {
       // One more frame with the chosen VSGL's visibility written out.
-      const uint32_t k = o.debugVsgl >= 0 ? uint32_t(o.debugVsgl) : render::brightestVsgl(vsgls);
+      const uint32_t k = o.debugVsgl >= 0 ? uint32_t(o.debugVsgl) : samples::brightestVsgl(vsgls);
       gi::Settings debug = indirect->settings();
       debug.debugVsgl = int32_t(k);
       samples::check(indirect->setSettings(debug));
       ctx.submitAndWait(
           [&](VkCommandBuffer cmd) { samples::check(indirect->record(cmd, input, &output)); });
       engine::writePng(base + "_visibility.png", image.width, image.height,
-                       render::greyscale(samples::readR32f(ctx, output.debugVisibility, o.width,
-                                                           o.height, "debug visibility")));
+                       samples::greyscale(samples::readR32f(ctx, output.debugVisibility, o.width,
+                                                            o.height, "debug visibility")));
       std::printf("wrote %s_visibility.png (ISM visibility of VSGL %u)\n", base.c_str(), k);
     }
   }
-  if (indirect && output.environmentDiffuse.image) {
-    samples::Indirect light = samples::readEnvironment(ctx, output, o.width, o.height);
-    samples::addInto(light.diffuse, light.glossy);
-    samples::writePair(base + "_environment", light.diffuse, toneMap);
-    samples::addInto(image, light.diffuse);
-  }
-  if (environment) {  // the background: the environment itself where no surface is seen
-    const engine::GBufferData g = engine::readbackGBuffer(ctx, gbuffer);
-    for (uint32_t y = 0; y < o.height; ++y)
-      for (uint32_t x = 0; x < o.width; ++x) {
-        if (!g.at(x, y).background()) continue;
-        const glm::vec3 dir(engine::cameraRayReference(view, glm::dvec2(x, y) + 0.5).dir);
-        const glm::vec3 sky = engine::environmentRadiance(*environment, dir);
-        float* p = &image.pixels[(size_t{y} * o.width + x) * 4];
-        for (int c = 0; c < 3; ++c) p[c] += sky[c];
-      }
-  }
+  if (frame.environmentLit)
+    samples::writePair(base + "_environment", frame.environmentLight, toneMap);
   samples::writePair(base, image, toneMap);
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   std::printf(

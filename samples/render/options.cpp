@@ -8,6 +8,7 @@
 #include "cli_values.h"
 #include "engine/error.h"
 #include "scene_files.h"
+#include "settings_fields.h"
 
 namespace render {
 
@@ -35,6 +36,9 @@ const char* usage() {
          "  --export-gltf PATH   also write the scene as a .gltf file\n" SAMPLES_LIGHT_USAGE
              SAMPLES_CAMERA_USAGE
          "indirect light (VSGLs through the public API, gi/include/gi/settings.h):\n"
+         "  --settings FILE      gi::Settings as 'key = value' lines (samples/common/\n"
+         "                       settings_fields.h), read over the values given so far; options\n"
+         "                       after it override it\n"
          "  --no-indirect        direct light only\n"
          "  --method NAME        modified (modified FIS, default), tok15 (Tokuyoshi 2015's kernel\n"
          "                       rule), or the baselines kmeans-2d / kmeans-3d (k-means of the\n"
@@ -130,6 +134,8 @@ Options parseOptions(int argc, char** argv) {
       o.exportGltf = args.value();
     else if (arg == "--no-indirect")
       o.indirect = false;
+    else if (arg == "--settings")  // over the defaults and earlier options; later ones win
+      o.gi = samples::readSettingsFile(std::string(args.value()), o.gi);
     else if (arg == "--method")
       std::tie(o.gi.method, o.gi.rule) = parseChoice<std::pair<gi::VsglMethod, gi::KernelRule>>(
           arg, args.value(),

@@ -1,12 +1,19 @@
 # Runs a command that must fail cleanly: non-zero exit, no crash (no signal), and exactly one
 # line on stderr that contains EXPECT (a regular expression).
 #   cmake -DCOMMAND="prog;arg;..." -DEXPECT=regex [-DENV="VAR=value"] -P expect_error.cmake
+# (an empty value unsets VAR)
 # The error line starts with the program's name ("<name>: error:").
 if(ENV)
-  string(REPLACE "=" ";" kv "${ENV}")
-  list(GET kv 0 name)
-  list(GET kv 1 value)
-  set(ENV{${name}} "${value}")
+  # NAME=VALUE; an empty value unsets NAME (e.g. DISPLAY= for a program that needs a display).
+  string(FIND "${ENV}" "=" eq)
+  string(SUBSTRING "${ENV}" 0 ${eq} name)
+  math(EXPR start "${eq} + 1")
+  string(SUBSTRING "${ENV}" ${start} -1 value)
+  if(value STREQUAL "")
+    unset(ENV{${name}})
+  else()
+    set(ENV{${name}} "${value}")
+  endif()
 endif()
 execute_process(COMMAND ${COMMAND} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(result EQUAL 0)

@@ -18,6 +18,7 @@
 #include "engine/rasterizer.h"
 #include "engine/view.h"
 #include "gpu_fixture.h"
+#include "host_frame.h"
 
 namespace {
 
@@ -271,3 +272,33 @@ TEST_F(DirectLightPlane, DirectionalLightAtNormalIncidence) {
 }
 
 }  // namespace
+
+// DirectLighting::setLights (a host moving its lights between frames, as vsgl_viewer does through
+// samples::HostFrame) gives the frame a new DirectLighting would, to the bit: lights moved and
+// turned, one light dropped and a point light (six shadow views, more than before) added.
+TEST_F(DirectLightTest, SetLightsEqualsANewInstance) {
+  Scene scene = engine::makeBuiltinScene("lounge");
+  const engine::View view = engine::cameraView(scene.cameras.front(), kWidth, kHeight);
+  const engine::DirectLightSettings settings{kShadowResolution, true};
+  const engine::SceneGpu gpuScene = engine::uploadScene(ctx(), scene);
+  auto frame = [&](samples::HostFrame& host) {
+    ctx().submitAndWait([&](VkCommandBuffer cmd) { host.record(cmd, gpuScene, view, nullptr); });
+    return host.radiance().readback(ctx());
+  };
+  samples::HostFrame kept(ctx(), scene, kWidth, kHeight, settings);
+  const std::vector<std::byte> before = frame(kept);
+  ASSERT_GE(scene.lights.size(), 2u);
+  scene.lights[0].position += glm::vec3(0.3f, -0.1f, 0.2f);
+  scene.lights[0].direction = glm::normalize(scene.lights[0].direction + glm::vec3(0.2f, 0, 0));
+  scene.lights.erase(scene.lights.begin() + 1);
+  engine::Light point;
+  point.type = engine::LightType::Point;
+  point.position = glm::vec3(0.5f, 1.8f, 0.0f);
+  point.intensity = 4.0f;
+  scene.lights.push_back(point);
+  kept.setLights(ctx(), scene);
+  const std::vector<std::byte> moved = frame(kept);
+  samples::HostFrame fresh(ctx(), scene, kWidth, kHeight, settings);
+  EXPECT_EQ(moved, frame(fresh)) << "setLights differs from a new DirectLighting";
+  EXPECT_NE(moved, before) << "the lights' change should show";
+}

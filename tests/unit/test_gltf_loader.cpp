@@ -20,9 +20,11 @@
 #include <utility>
 #include <vector>
 
+#include "engine/builtin_scenes.h"
 #include "engine/error.h"
 #include "engine/gltf.h"
 #include "engine/scene.h"
+#include "engine/view.h"
 #include "test_files.h"
 
 namespace {
@@ -388,6 +390,49 @@ TEST(GltfWriter, WritesTexturesAsPngBesideTheGltf) {
   EXPECT_EQ(back.materials[0].baseColorTexture, 1);
   EXPECT_EQ(back.materials[0].metallicRoughnessTexture, 0);
   EXPECT_EQ(back.uvs, scene.uvs);
+}
+
+// Cameras and light directions cross a written file bit for bit, built-in scenes' and ones a host
+// placed at odd angles alike (vsgl_viewer's screenshots rely on it: vsgl_render of the .gltf must
+// render the frame the viewer showed). A skewed and scaled camera node is still made rigid.
+TEST(GltfWriter, CamerasAndLightDirectionsReadBackBitForBit) {
+  for (const std::string& name : engine::builtinSceneNames()) {
+    engine::Scene scene = engine::makeBuiltinScene(name);
+    // A camera turned by odd angles, as an orbit leaves it, and lights turned likewise.
+    engine::Camera turned = scene.cameras.front();
+    const glm::vec3 eye(1.234567f, 2.345678f, 3.456789f);
+    const glm::vec3 forward = glm::normalize(glm::vec3(-0.3141593f, -0.2718282f, -0.9f));
+    turned.cameraToWorld = glm::inverse(engine::lookAlong(eye, forward, glm::vec3(0, 1, 0)));
+    turned.name = "turned";
+    scene.cameras.push_back(turned);
+    for (engine::Light& l : scene.lights)
+      l.direction = glm::normalize(l.direction + glm::vec3(0.123457f, -0.0312f, 0.07f));
+    TempDir dir;
+    engine::writeGltf(scene, (dir / "back.gltf").string());
+    const engine::Scene back = engine::loadGltf((dir / "back.gltf").string());
+    ASSERT_EQ(back.cameras.size(), scene.cameras.size()) << name;
+    for (size_t c = 0; c < scene.cameras.size(); ++c)
+      EXPECT_EQ(back.cameras[c].cameraToWorld, scene.cameras[c].cameraToWorld)
+          << name << " camera " << c;
+    ASSERT_EQ(back.lights.size(), scene.lights.size()) << name;
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+      if (scene.lights[i].type == engine::LightType::Point) continue;  // no direction
+      EXPECT_EQ(back.lights[i].direction, scene.lights[i].direction) << name << " light " << i;
+    }
+  }
+  // Not rigid: columns scaled by 2 and y skewed towards z; the view axis keeps its direction.
+  glm::mat4 skewed(1.0f);
+  skewed[0] = glm::vec4(2.0f, 0.0f, 0.0f, 0.0f);
+  skewed[1] = glm::vec4(0.0f, 2.0f, 0.5f, 0.0f);
+  skewed[2] = glm::vec4(0.0f, 0.0f, 2.0f, 0.0f);
+  const std::optional<glm::mat4> rigid = engine::rigidCameraFrame(skewed);
+  ASSERT_TRUE(rigid.has_value());
+  EXPECT_EQ((*rigid)[2], glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+  EXPECT_EQ((*rigid)[1], glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
+  EXPECT_EQ((*rigid)[0], glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  EXPECT_FALSE(engine::rigidCameraFrame(glm::mat4(0.0f)).has_value());
+  EXPECT_FALSE(engine::fileLightDirection(glm::vec3(0.0f)).has_value());
+  EXPECT_EQ(*engine::fileLightDirection(glm::vec3(0.0f, -3.0f, 0.0f)), glm::vec3(0, -1, 0));
 }
 
 // KHR_texture_transform's example: offset (0, 1), rotation pi/2 and scale 0.5 take the unit

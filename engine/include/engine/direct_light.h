@@ -34,9 +34,15 @@ class DirectLighting {
               const GBuffer& gbuffer, const View& view, Image& radiance,
               GpuProfiler* profiler = nullptr);
 
+  // The scene's lights changed (moved, turned, added): new light records and shadow views, the
+  // shadow-map memory grown when there are more views. Blocking uploads, between frames; the
+  // program is kept, so a host that moves a light each frame does not rebuild its pipeline.
+  void setLights(Context& ctx, const Scene& scene);
   const LightSetup& setup() const { return setup_; }
 
  private:
+  void upload(Context& ctx, const Scene& scene);
+
   DirectLightSettings settings_;
   LightSetup setup_;
   ComputeProgram program_;

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -140,5 +141,19 @@ struct Scene {
 
 // A perspective camera that frames the whole scene from its +Z side, used when the glTF has none.
 Camera defaultCamera(const Scene& scene);
+
+// A camera's frame as the glTF loader keeps it (a scaled or skewed node would skew the view): a
+// frame that is already rigid to float precision (unit axes, orthogonal within 1e-6, right-handed)
+// as its floats, so that a camera written to a file reads back bit for bit; any other with the
+// viewing axis Z normalised, Y made orthogonal to it and X = Y x Z, in double and rounded once.
+// Empty when Z or Y is degenerate.
+std::optional<glm::mat4> rigidCameraFrame(const glm::mat4& world);
+
+// A light's direction as files carry it: a vector of unit length to float precision
+// (|length - 1| <= 1e-6) is kept as its floats, any other is normalised in double; empty when
+// it is zero or not finite. The glTF writer stores a light's direction through it as the node's
+// -Z and the loader reads the node's -Z back through it, so a light written and read back keeps
+// its direction bit for bit.
+std::optional<glm::vec3> fileLightDirection(const glm::vec3& direction);
 
 }  // namespace engine

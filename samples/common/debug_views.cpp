@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace render {
+namespace samples {
 namespace {
 
 struct Canvas {
@@ -112,4 +112,4 @@ uint32_t brightestVsgl(std::span<const gpu::Vsgl> vsgls) {
   return best;
 }
 
-}  // namespace render
+}  // namespace samples

@@ -1,4 +1,5 @@
-// The sample renderer's debug pictures, drawn on the CPU from what the public API hands back.
+// The sample programs' debug pictures (vsgl_render, vsgl_viewer), drawn on the CPU from what the
+// public API hands back.
 #pragma once
 
 #include <cstdint>
@@ -8,7 +9,7 @@
 #include "engine/image_io.h"
 #include "shared/vsgl.h"
 
-namespace render {
+namespace samples {
 
 // The VSGL lobes over a dimmed copy of `rgba8` (the tone-mapped frame): each lobe's mean as a
 // circle of radius 2 sigma (sigma = sqrt(variance), projected; at least 2 pixels), cyan for
@@ -27,4 +28,4 @@ std::vector<uint8_t> levelColours(std::span<const uint8_t> rgba8, std::span<cons
 // Index of the VSGL with the largest total power (luminance weight of both lobes).
 uint32_t brightestVsgl(std::span<const gpu::Vsgl> vsgls);
 
-}  // namespace render
+}  // namespace samples
