@@ -27,6 +27,19 @@ std::string AppState::load(const std::string& name, const std::string& cameraCho
   }
 }
 
+std::string AppState::setEnvironment(const std::string& name) {
+  try {
+    environmentImage =
+        name.empty() ? nullptr
+                     : std::make_shared<const engine::ImageRgba32f>(samples::loadEnvironment(name));
+    environment = name;
+    changed();
+    return {};
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
 FrameRequest AppState::request(uint32_t width, uint32_t height) {
   FrameRequest r;
   r.serial = serial;
@@ -39,6 +52,7 @@ FrameRequest AppState::request(uint32_t width, uint32_t height) {
   if (!split.empty()) r.right = withMethod(settings, "split", split);
   r.indirect = indirect;
   r.environment = environment;
+  r.environmentImage = environmentImage;
   r.mode = mode;
   r.pick = pick;
   pick.reset();
@@ -68,6 +82,9 @@ std::string AppState::apply(const ScriptEvent& e) {
   const std::string& c = e.command;
   if (c == "scene") {
     if (std::string error = load(e.args[0], ""); !error.empty()) return error;
+  } else if (c == "environment") {
+    const std::string name = e.args[0] == "none" ? "" : e.args[0];
+    if (std::string error = setEnvironment(name); !error.empty()) return error;
   } else if (c == "orbit") {
     camera.turn(scriptNumber(e, 0), scriptNumber(e, 1));
   } else if (c == "zoom") {
@@ -103,7 +120,8 @@ AppState initialState(const Options& o) {
   AppState s;
   s.settings = o.gi;
   s.split = o.split;
-  s.environment = o.environment;
+  if (std::string error = s.setEnvironment(o.environment); !error.empty())
+    throw engine::Error(error);
   s.mode = o.mode;
   s.exposureEv = o.exposureEv;
   s.scale = o.scale;

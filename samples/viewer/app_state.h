@@ -25,7 +25,8 @@ struct AppState {
   gi::Settings settings;
   std::string split;  // "" or the right half's method word
   bool indirect = true;
-  std::string environment;
+  std::string environment;  // --environment's argument, "" = none
+  std::shared_ptr<const engine::ImageRgba32f> environmentImage;
   ViewMode mode = ViewMode::Final;
   std::optional<float> exposureEv;
   float scale = 0.5f;
@@ -38,6 +39,9 @@ struct AppState {
   // Loads a built-in scene or file and selects `camera` ("" = the first). On failure the
   // current scene stays and the error is returned ("" on success).
   std::string load(const std::string& name, const std::string& camera);
+  // Loads a built-in environment or an image file ("" = none). On failure the current
+  // environment stays and the error is returned ("" on success).
+  std::string setEnvironment(const std::string& name);
   void changed() { ++serial; }
   // The request for a frame of width x height.
   FrameRequest request(uint32_t width, uint32_t height);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/image_io.h"
 #include "engine/scene.h"
 #include "engine/view.h"
 #include "gi/indirect_lighting.h"
@@ -48,6 +49,7 @@ struct FrameRequest {
   std::optional<gi::Settings> right;
   bool indirect = true;     // off: direct light only
   std::string environment;  // --environment's argument; "" = none
+  std::shared_ptr<const engine::ImageRgba32f> environmentImage;  // loaded by AppState
   ViewMode mode = ViewMode::Final;
   // A pixel whose strongest VSGL (unshadowed) becomes the one the Visibility view shows.
   std::optional<std::array<uint32_t, 2>> pick;

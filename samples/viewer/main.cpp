@@ -245,7 +245,8 @@ int run(const Options& o) {
         if (script[nextEvent].command == "screenshot")
           stepShots.push_back(script[nextEvent].args[0]);
         else if (std::string problem = state.apply(script[nextEvent]); !problem.empty())
-          std::fprintf(stderr, "vsgl_viewer: %s (the scene stays as it was)\n", problem.c_str());
+          std::fprintf(stderr, "vsgl_viewer: %s (the %s stays as it was)\n", problem.c_str(),
+                       script[nextEvent].command.c_str());
       }
       state.changed();  // every step renders one frame
       worker.post(state.request(width, height));

@@ -89,7 +89,7 @@ bool fieldWidget(const samples::SettingField& f, gi::Settings& settings) {
 
 void sceneSection(AppState& state) {
   if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  static std::string file;
+  static std::string file, environmentFile;
   for (const std::string& name : engine::builtinSceneNames()) {
     if (ImGui::RadioButton(name.c_str(), state.sceneName == name) && state.sceneName != name)
       if (std::string e = state.load(name, ""); !e.empty()) state.status = e;
@@ -127,17 +127,16 @@ void sceneSection(AppState& state) {
   const std::vector<std::string> environments = engine::builtinEnvironmentNames();
   if (ImGui::BeginCombo("environment",
                         state.environment.empty() ? "none" : state.environment.c_str())) {
-    if (ImGui::Selectable("none", state.environment.empty())) {
-      state.environment.clear();
-      state.changed();
-    }
+    if (ImGui::Selectable("none", state.environment.empty())) state.setEnvironment("");
     for (const std::string& e : environments)
-      if (ImGui::Selectable(e.c_str(), state.environment == e)) {
-        state.environment = e;
-        state.changed();
-      }
+      if (ImGui::Selectable(e.c_str(), state.environment == e))
+        if (std::string error = state.setEnvironment(e); !error.empty()) state.status = error;
     ImGui::EndCombo();
   }
+  ImGui::InputText("HDR/EXR file", &environmentFile);
+  ImGui::SameLine();
+  if (ImGui::Button("Load##environment"))  // a file that fails leaves the environment as it was
+    if (std::string e = state.setEnvironment(environmentFile); !e.empty()) state.status = e;
   ImGui::TextDisabled("drag: turn, wheel: zoom, middle drag: pan, WASD QE: move");
 }
 

@@ -97,8 +97,7 @@ struct RenderWorker::State {
   std::optional<engine::SceneGpu> gpuScene;
   std::unique_ptr<samples::HostFrame> host;
   std::unique_ptr<gi::IndirectLighting> left, right;
-  std::string environmentName;
-  std::optional<engine::ImageRgba32f> environment;
+  std::shared_ptr<const engine::ImageRgba32f> environment;
   std::unique_ptr<engine::GpuProfiler> profiler;
   int32_t visibilityVsgl = -1;
   uint64_t frames = 0;
@@ -135,10 +134,8 @@ FrameResult RenderWorker::State::render(const FrameRequest& r) {
     sceneSource = r.scene;
     visibilityVsgl = -1;
   }
-  if (r.environment != environmentName) {
-    environment.reset();
-    if (!r.environment.empty()) environment = samples::loadEnvironment(r.environment);
-    environmentName = r.environment;
+  if (r.environmentImage != environment) {
+    environment = r.environmentImage;
     left.reset();
     right.reset();
   }
@@ -211,7 +208,7 @@ FrameResult RenderWorker::State::render(const FrameRequest& r) {
       result.passes.push_back(pass);
     }
 
-  const engine::ImageRgba32f* env = environment ? &*environment : nullptr;
+  const engine::ImageRgba32f* env = environment.get();
   result.images = samples::readFrame(*ctx, *host, left ? &leftOut : nullptr, view, env);
   std::vector<gpu::Vsgl> vsgls;
   if (left && leftOut.vsglCount > 0) vsgls = samples::readVsgls(*ctx, leftOut);

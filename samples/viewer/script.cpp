@@ -27,6 +27,7 @@ const std::map<std::string, Shape>& commands() {
       {"set", {Args::KeyValue, 2}},       {"view", {Args::Word, 1}},
       {"split", {Args::Word, 1}},         {"pick", {Args::Numbers, 2}},
       {"screenshot", {Args::Word, 1}},    {"scene", {Args::Word, 1}},
+      {"environment", {Args::Word, 1}},
   };
   return table;
 }

@@ -17,6 +17,8 @@
 //   pick X Y                the VSGL lighting pixel (X, Y) most becomes the visibility view's
 //   scene NAME|FILE         load a built-in scene or a file; one that fails to load leaves the
 //                           scene as it was (one line on stderr), as the panel's Load button
+//   environment NAME|FILE|none  a built-in environment or an HDR/EXR file; one that fails to
+//                           load leaves the environment as it was, as the scene command
 //   screenshot BASE         write BASE.{exr,png}, BASE_window.png, BASE.gltf, BASE.settings
 #pragma once
 

@@ -8,20 +8,20 @@
 # script names them) to differ (the step between them changed the picture); --same A B requires
 # them to be equal (a step whose change was refused). --direct BASE STEM "ARGS" renders
 # vsgl_render ARGS itself (a built-in scene, not the viewer's .gltf) and requires its STEM.exr
-# and STEM.png to equal screenshot BASE. --stderr REGEX requires the viewer to have said it.
+# and STEM.png to equal screenshot BASE. --stderr REGEX requires the viewer to have said it (repeatable).
 #   check_viewer.sh BIN_DIR OUT [--differ A B]... [--same A B]... [--direct BASE STEM ARGS]...
-#                   [--stderr REGEX] -- VIEWER_ARGS...
+#                   [--stderr REGEX]... -- VIEWER_ARGS...
 set -euo pipefail
 bin=$1 out=$2
 shift 2
 differ=()
 same=()
 direct=()
-stderr=""
+stderr=()
 while [ "$1" != "--" ]; do
   case $1 in
     --direct) direct+=("$2|$3|$4"); shift 4 ;;
-    --stderr) stderr=$2; shift 2 ;;
+    --stderr) stderr+=("$2"); shift 2 ;;
     --differ) differ+=("$2 $3"); shift 3 ;;
     --same) same+=("$2 $3"); shift 3 ;;
     *) echo "check_viewer.sh: unknown option $1" >&2; exit 2 ;;
@@ -84,7 +84,6 @@ for entry in "${direct[@]}"; do
     echo "equal: $base$suffix and vsgl_render $args"
   done
 done
-if [ -n "$stderr" ] && ! grep -Eq "$stderr" viewer.err; then
-  echo "the viewer did not say: $stderr"
-  exit 1
-fi
+for said in "${stderr[@]}"; do
+  grep -Eq "$said" viewer.err || { echo "the viewer did not say: $said"; exit 1; }
+done
