@@ -186,9 +186,9 @@ Preflight preflight(const std::string& path, const std::string& json) {
   const nlohmann::json textures = doc.value("textures", nlohmann::json::array());
   std::vector<bool>& colour = out.colourImages;
   colour.assign(images.is_array() ? images.size() : 0, false);
-  const auto markColour = [&](const nlohmann::json& m, std::initializer_list<const char*> path) {
+  const auto markColour = [&](const nlohmann::json& m, std::initializer_list<const char*> keys) {
     const nlohmann::json* t = &m;
-    for (const char* key : path) {
+    for (const char* key : keys) {
       if (!t->is_object() || !t->contains(key)) return;
       t = &(*t)[key];
     }

@@ -20,7 +20,9 @@ std::string number(float v) {
 }
 
 std::string vector(glm::vec3 v) {
-  return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
+  char text[96];
+  std::snprintf(text, sizeof(text), "(%g, %g, %g)", double(v.x), double(v.y), double(v.z));
+  return text;
 }
 
 }  // namespace

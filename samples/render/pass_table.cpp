@@ -20,8 +20,8 @@ void PassTable::print(uint32_t frames, uint32_t vsglCount, uint32_t shadedPixels
     std::printf("  %-34s %9.3f %5u", name.c_str(), ms, dispatches_.at(name));
     if ((name == "gi vsgl shading" || name == "gi vpl shading") && vsglCount > 0)
       std::printf("   (%.2f ns per shaded pixel-%s pair)",
-                  name == "gi vpl shading" ? "VPL" : "VSGL",
-                  ms * 1e6 / (double(vsglCount) * shadedPixels));
+                  ms * 1e6 / (double(vsglCount) * shadedPixels),
+                  name == "gi vpl shading" ? "VPL" : "VSGL");
     std::printf("\n");
   }
 }

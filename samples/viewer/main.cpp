@@ -73,11 +73,12 @@ void handleInput(GLFWwindow* window, AppState& state, float dt, const Rect& show
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
         ImGui::GetMouseDragDelta(ImGuiMouseButton_Left, 0.0f).x == 0.0f &&
         ImGui::GetMouseDragDelta(ImGuiMouseButton_Left, 0.0f).y == 0.0f && shown.width > 0) {
-      const float px = io.MousePos.x * io.DisplayFramebufferScale.x - shown.x;
-      const float py = io.MousePos.y * io.DisplayFramebufferScale.y - shown.y;
-      if (px >= 0 && py >= 0 && px < shown.width && py < shown.height) {
-        state.pick = std::array<uint32_t, 2>{uint32_t(px * frameWidth / shown.width),
-                                             uint32_t(py * frameHeight / shown.height)};
+      const float px = io.MousePos.x * io.DisplayFramebufferScale.x - float(shown.x);
+      const float py = io.MousePos.y * io.DisplayFramebufferScale.y - float(shown.y);
+      if (px >= 0 && py >= 0 && px < float(shown.width) && py < float(shown.height)) {
+        state.pick =
+            std::array<uint32_t, 2>{uint32_t(px * float(frameWidth) / float(shown.width)),
+                                    uint32_t(py * float(frameHeight) / float(shown.height))};
         state.changed();
       }
     }
@@ -189,8 +190,8 @@ int run(const Options& o) {
 
     const auto [windowWidth, windowHeight] = window.size();
     const Rect area{0, 0, windowWidth, windowHeight};
-    const uint32_t width = std::max(1u, uint32_t(std::lround(windowWidth * state.scale)));
-    const uint32_t height = std::max(1u, uint32_t(std::lround(windowHeight * state.scale)));
+    const uint32_t width = std::max(1u, uint32_t(std::lround(float(windowWidth) * state.scale)));
+    const uint32_t height = std::max(1u, uint32_t(std::lround(float(windowHeight) * state.scale)));
     panel.renderWidth = width;
     panel.renderHeight = height;
     bool stepDone = false;

@@ -421,9 +421,10 @@ void Window::setImage(std::span<const uint8_t> rgba, uint32_t width, uint32_t he
 void Window::record(VkCommandBuffer cmd, uint32_t index, const Rect& area, bool capture) {
   VkImage target = images_[index];
   const VkPipelineStageFlags transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  const VkPipelineStageFlags top = VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT;
   if (imageDirty_ && image_) {
     pipelineBarrier(
-        cmd, imageInitialised_ ? transfer : VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, transfer,
+        cmd, imageInitialised_ ? transfer : top, transfer,
         barrier(
             image_,
             imageInitialised_ ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
