@@ -70,7 +70,7 @@ dispatches() {
   local out
   out=$(mktemp -d)
   "$render" --scene cornell --width 32 --height 18 --rsm 256 --count 64 --frames 1 --warmup 1 \
-    --method "$1" --out "$out" |
+    --method "$1" --reuse off --out "$out" |
     awk '$1 == "gi" && ($2 == "filtered" || $2 == "attribute" || $2 == "k-means") { n += $NF }
          END { print n + 0 }'
   rm -rf "$out"

@@ -12,6 +12,7 @@
 
 #include "engine/commands.h"
 #include "engine/rasterizer.h"
+#include "frame_reuse.h"
 #include "light_validation.h"
 #include "passes/adaptive_shading.h"
 #include "passes/brsm_pdf.h"
@@ -119,10 +120,11 @@ Status failure(const std::string& message) {
 
 }  // namespace
 
-// One RSM view and the light it sees.
+// One RSM view, the light it sees and what its RSM and pyramids are made from.
 struct LightView {
   RsmView view;
   engine::Light light;
+  LightViewInputs inputs;
 };
 
 struct IndirectLighting::Impl {
@@ -154,10 +156,14 @@ struct IndirectLighting::Impl {
   }
 
   void record(VkCommandBuffer cmd, const FrameInput& in, FrameOutput& out);
-  // Every pass of a frame that bounces light, in order; returns the frame's VSGLs.
+  // Every pass of a frame that bounces light, in order, less those whose inputs are as when
+  // they last ran (frame_reuse.h); returns the frame's VSGLs.
   const engine::Buffer& recordPasses(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
                                      const engine::View& camera,
-                                     const std::vector<LightView>& views, uint32_t rule);
+                                     const std::vector<LightView>& views, uint32_t rule,
+                                     const CameraInputs& cameraIn, const SceneInputs& sceneIn);
+  // FramePlan::Reuse::reasons: what this frame kept from earlier ones.
+  std::vector<std::string> reuseReasons(const FrameInput& in, size_t viewCount) const;
   // Both outputs cleared to black, visible to the host's next reads like the shaded ones.
   void recordBlackOutputs(VkCommandBuffer cmd);
   // The VSGLs of this frame: sampled with FIS or clustered with k-means.
@@ -217,6 +223,10 @@ struct IndirectLighting::Impl {
   // The SG lights' count and K when they were generated (0: not since the last conversion).
   uint32_t lightsCount = 0;
   float lightsKernelScale = 0.0f;
+  // Reuse across frames (frame_reuse.h): the stages' inputs when they last ran, and the counts
+  // that tell a changed scene or environment from a kept one.
+  LastInputs last;
+  uint64_t frameCount = 0, sceneSerial = 0, environmentSerial = 0;
   engine::GpuProfiler profiler;
 };
 
@@ -377,12 +387,18 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
 
   plan = planFrame(settings, in.lights, bounds, maxReflectance, maxSpecular, canOcclude,
                    environmentSet, environmentSet && environmentMap->pending());
+  ++frameCount;
+  if (!settings.reuse) last = {};
+  const CameraInputs cameraIn = cameraInputs(in, frameCount);
+  const SceneInputs sceneIn = sceneInputs(sceneSerial, in, frameCount);
   // The RSM views of the lights that bounce, in order, each with its light.
   std::vector<LightView> views;
   for (uint32_t i : plan.lights) {
     const engine::Light light = engineLight(in.lights[i]);
+    uint32_t face = 0;
     for (const RsmView& view : makeRsmViews(bounds, light, settings.rsmSize))
-      views.push_back({view, light});
+      views.push_back(
+          {view, light, {sceneIn, in.lights[i], face++, plan.specularLobes, settings.pdf}});
   }
 
   // Every view's pyramids exist before the deferred setup that gives new images their layout.
@@ -394,27 +410,47 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   {
     engine::ProfileScope frame(&profiler, cmd, "frame");
     acquireHostImages(cmd, gbuffer, g.depthFormat == VK_FORMAT_D32_SFLOAT);
-    if (convert) {
+    // What earlier frames wrote and this one keeps becomes visible to its reads (their own
+    // last barriers cover it too; this one does not rely on how they ended).
+    engine::memoryBarrier(
+        cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    plan.reuse.gbuffer = convert && last.converted == cameraIn;
+    if (!convert) last.converted.reset();
+    if (convert && !plan.reuse.gbuffer) {
+      last.converted = cameraIn;
       gpu::GBufferConvertPush push{};
       push.depthRow = glm::vec4(proj[2][2], proj[3][2], proj[2][3], proj[3][3]);
       push.viewport = {width, height};
       push.depthEncoding = static_cast<uint32_t>(g.depthEncoding);
       push.normalEncoding = static_cast<uint32_t>(g.normalEncoding);
       converter->record(cmd, gbuffer.depth, gbuffer.normal, push, &profiler);
+    }
+    if (convert) {
       gbuffer.depth = borrowOwn(converter->depth());
       gbuffer.normal = borrowOwn(converter->normal());
     }
     if (plan.bounce) {
-      vsgls = &recordPasses(cmd, gbuffer, camera, views, rule);
+      vsgls = &recordPasses(cmd, gbuffer, camera, views, rule, cameraIn, sceneIn);
       // The outputs, written by compute, become visible to whatever the host does next.
       engine::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
     } else {
-      recordBlackOutputs(cmd);
+      const ShadingInputs black{};  // black outputs depend on nothing
+      plan.reuse.shading = last.shading == black;
+      if (!plan.reuse.shading) recordBlackOutputs(cmd);
+      last.shading = black;
     }
-    if (plan.environment) recordEnvironment(cmd, gbuffer, camera);
+    if (plan.environment) {
+      const EnvironmentInputs environmentIn{cameraIn, environmentSerial, settings.environment};
+      plan.reuse.environment = last.environment == environmentIn;
+      if (!plan.reuse.environment) recordEnvironment(cmd, gbuffer, camera);
+      last.environment = environmentIn;
+    }
   }
+  plan.reuse.reasons = reuseReasons(in, views.size());
 
   out = {};
   out.indirectDiffuse = {indirect.diffuse.handle(), indirect.diffuse.view(),
@@ -440,59 +476,103 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
 }
 
-const engine::Buffer& IndirectLighting::Impl::recordPasses(VkCommandBuffer cmd,
-                                                           engine::GBuffer& gbuffer,
-                                                           const engine::View& camera,
-                                                           const std::vector<LightView>& views,
-                                                           uint32_t rule) {
+const engine::Buffer& IndirectLighting::Impl::recordPasses(
+    VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera,
+    const std::vector<LightView>& views, uint32_t rule, const CameraInputs& cameraIn,
+    const SceneInputs& sceneIn) {
   const bool brsm = settings.pdf == PdfKind::Brsm;
-  // [S3] generates the importance VSGLs with the rule under test and K = 1.
-  if (brsm)
-    importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
-                       &profiler, plan.specularLobes);
-  // One RSM at a time, each view with its own attribute pyramids and PDF. With several views
-  // (a point light's faces) filtered sampling shares the N VSGLs among them on the GPU by their
-  // importance-weighted power, each writing its range of the buffer; k-means, whose passes size
-  // their dispatches with K on the host, gives each view N / views
-  // (docs/techniques/point-lights.md).
   const auto viewCount = static_cast<uint32_t>(views.size());
+  // With several views (a point light's faces, several lights) filtered sampling shares the N
+  // VSGLs among them on the GPU by their importance-weighted power, each view keeping its own
+  // pyramids; k-means, whose passes size their dispatches with K on the host, gives each view
+  // N / views in turn through the same pyramids (docs/techniques/point-lights.md).
   const bool shared = viewCount > 1 && filtered(settings.method);
-  std::vector<glm::uvec2> hostRanges;
-  for (uint32_t v = 0, first = 0; v < viewCount; ++v) {
-    const uint32_t count =
-        settings.vsglCount / viewCount + (v < settings.vsglCount % viewCount ? 1u : 0u);
-    if (!shared) hostRanges.emplace_back(first, count);
-    if (count == 0 && !shared) continue;
-    VsglAttributes& pyramids = attributesOf(shared ? v : 0);
-    const RsmView& view = views[v].view;
-    rsm.record(cmd, *scene, rasterizer, resolve, view, views[v].light, &profiler);
-    pyramids.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler, plan.specularLobes);
-    if (brsm)
-      brsmPdf->record(cmd, pyramids, view, importance->vsgls(), settings.brsm, mips, &profiler);
-    if (shared) {
-      allocation.recordWeight(cmd, v, pyramids, brsm ? &brsmPdf->cells() : nullptr);
-    } else {
-      recordVsgls(cmd, view, rule, first, count, viewCount > 1);
-      first += count;
+  const bool ownPyramids = viewCount == 1 || shared;
+  // Temporal k-means starts from the last frame's centres: its VSGLs change in every frame,
+  // so neither they nor what is made from them are kept.
+  const bool evolving = !filtered(settings.method) && settings.kmeans.temporal;
+
+  VsglInputs vsglIn{
+      {},           std::nullopt,    settings.vsglCount, settings.kernelScale, settings.rule,
+      settings.pdf, settings.method, settings.kmeans,    settings.brsm};
+  for (const LightView& v : views) vsglIn.views.push_back(v.inputs);
+  if (brsm)
+    vsglIn.importance = {cameraIn, settings.brsm.importanceCount, settings.rule,
+                         plan.specularLobes};
+  plan.reuse.vsgls = last.vsgls == vsglIn;
+  if (plan.reuse.vsgls) {  // and with them all they are made from
+    plan.reuse.importance = brsm;
+    plan.reuse.lightViews = viewCount;
+  } else {
+    // [S3] generates the importance VSGLs with the rule under test and K = 1.
+    plan.reuse.importance = brsm && last.importance == vsglIn.importance;
+    if (brsm && !plan.reuse.importance) {
+      importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
+                         &profiler, plan.specularLobes);
+      last.importance = vsglIn.importance;
     }
-  }
-  if (!shared) allocation.recordRanges(cmd, hostRanges);
-  if (shared) {
-    allocation.recordAllocate(cmd, viewCount, settings.vsglCount,
-                              brsm ? settings.brsm.fluxMix : 1.0f, &profiler);
-    const uint32_t generation = settings.method == VsglMethod::Vpl ? VSGL_RULE_POINT : rule;
-    for (uint32_t v = 0; v < viewCount; ++v)
-      generator.recordRanged(cmd, attributesOf(v), views[v].view,
-                             {settings.vsglCount, settings.kernelScale, generation},
-                             allocation.ranges(), v, &profiler);
+    // One RSM at a time, each view with its attribute pyramids and PDF.
+    if (last.views.size() < viewCount) last.views.resize(viewCount);
+    std::vector<glm::uvec2> hostRanges;
+    for (uint32_t v = 0, first = 0; v < viewCount; ++v) {
+      const uint32_t count =
+          settings.vsglCount / viewCount + (v < settings.vsglCount % viewCount ? 1u : 0u);
+      if (!shared) hostRanges.emplace_back(first, count);
+      if (count == 0 && !shared) continue;
+      VsglAttributes& pyramids = attributesOf(shared ? v : 0);
+      const RsmView& view = views[v].view;
+      std::optional<LightViewInputs>& kept = last.views[shared ? v : 0];
+      if (ownPyramids && kept == views[v].inputs) {
+        ++plan.reuse.lightViews;
+      } else {
+        rsm.record(cmd, *scene, rasterizer, resolve, view, views[v].light, &profiler);
+        pyramids.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler, plan.specularLobes);
+        kept = views[v].inputs;
+        if (!ownPyramids) kept.reset();  // the next view overwrites them
+      }
+      // BRSM's PDF is written over the pyramids' PDF channel from their power channels, which
+      // it leaves as they are: it can run again on kept pyramids.
+      if (brsm)
+        brsmPdf->record(cmd, pyramids, view, importance->vsgls(), settings.brsm, mips, &profiler);
+      if (shared) {
+        allocation.recordWeight(cmd, v, pyramids, brsm ? &brsmPdf->cells() : nullptr);
+      } else {
+        recordVsgls(cmd, view, rule, first, count, viewCount > 1);
+        first += count;
+      }
+    }
+    if (!shared) allocation.recordRanges(cmd, hostRanges);
+    if (shared) {
+      allocation.recordAllocate(cmd, viewCount, settings.vsglCount,
+                                brsm ? settings.brsm.fluxMix : 1.0f, &profiler);
+      const uint32_t generation = settings.method == VsglMethod::Vpl ? VSGL_RULE_POINT : rule;
+      for (uint32_t v = 0; v < viewCount; ++v)
+        generator.recordRanged(cmd, attributesOf(v), views[v].view,
+                               {settings.vsglCount, settings.kernelScale, generation},
+                               allocation.ranges(), v, &profiler);
+    }
+    if (evolving)
+      last.vsgls.reset();
+    else
+      last.vsgls = vsglIn;
   }
   const engine::Buffer* vsgls = &vsglBuffer();
   // The maps are built for the shading's visibility or for the debug view, whichever asks.
-  if (plan.visibility || settings.debugVsgl >= 0) {
-    if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
-    ismPointsStale = false;
-    ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
+  const bool isms = plan.visibility || settings.debugVsgl >= 0;
+  if (isms) {
+    const IsmInputs ismIn{vsglIn, sceneIn};
+    plan.reuse.isms = !evolving && last.isms == ismIn;
+    if (!plan.reuse.isms) {
+      if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
+      ismPointsStale = false;
+      ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
+      last.isms = ismIn;
+    }
   }
+  const ShadingInputs shadingIn{vsglIn, isms, cameraIn, sceneIn, settings};
+  plan.reuse.shading = !evolving && last.shading == shadingIn;
+  last.shading = shadingIn;
+  if (plan.reuse.shading) return *vsgls;
   const uint32_t flags =
       (plan.glossy ? VSGL_SHADE_GLOSSY : 0u) | (plan.visibility ? VSGL_SHADE_VISIBILITY : 0u) |
       (plan.skySkipped ? VSGL_SHADE_SKIP_SKY : 0u) |
@@ -521,6 +601,42 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(VkCommandBuffer cmd,
                          *debugVisibility, &profiler);
   }
   return *vsgls;
+}
+
+std::vector<std::string> IndirectLighting::Impl::reuseReasons(const FrameInput& in,
+                                                              size_t viewCount) const {
+  std::vector<std::string> lines;
+  if (!settings.reuse) return {"reuse: off in the settings: every pass runs in every frame"};
+  if (in.gbufferGeneration == 0)
+    lines.push_back(
+        "reuse: FrameInput.gbufferGeneration = 0 (not known): the G-buffer counts as changed in "
+        "every frame");
+  if (in.sceneGeneration == 0)
+    lines.push_back(
+        "reuse: FrameInput.sceneGeneration = 0 (not known): the geometry counts as changed in "
+        "every frame");
+  const FramePlan::Reuse& r = plan.reuse;
+  if (r.gbuffer) lines.push_back("reuse: G-buffer unchanged: not converted again");
+  if (r.vsgls) {
+    lines.push_back(
+        "reuse: lights, geometry, view importance and VSGL settings unchanged: VSGLs kept (no "
+        "RSM, attribute, PDF or VSGL pass)");
+  } else {
+    if (r.importance) lines.push_back("reuse: G-buffer unchanged: BRSM importance VSGLs kept");
+    if (r.lightViews > 0)
+      lines.push_back("reuse: light and geometry unchanged for " + std::to_string(r.lightViews) +
+                      " of " + std::to_string(viewCount) +
+                      " RSM views: their RSM, flux and attribute pyramids kept");
+  }
+  if (r.isms) lines.push_back("reuse: VSGLs and geometry unchanged: ISMs kept");
+  if (r.shading)
+    lines.push_back("reuse: nothing the shading reads changed: outputs kept (no shading pass)");
+  if (r.environment) lines.push_back("reuse: G-buffer and environment unchanged: its outputs kept");
+  if (plan.bounce && !filtered(settings.method) && settings.kmeans.temporal)
+    lines.push_back(
+        "reuse: temporal k-means starts from the last frame's centres: its VSGLs, ISMs and "
+        "shading run in every frame");
+  return lines;
 }
 
 void IndirectLighting::Impl::recordBlackOutputs(VkCommandBuffer cmd) {
@@ -662,6 +778,7 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
   scene.alphaCutouts = s.alphaCutouts;
   impl_->scene = std::move(scene);
   impl_->ismPointsStale = true;
+  ++impl_->sceneSerial;
   impl_->bounds = {s.boundsMin, s.boundsMax};
   impl_->maxReflectance = s.maxReflectance;
   impl_->canOcclude = s.canOcclude;
@@ -723,6 +840,7 @@ void IndirectLighting::Impl::recordEnvironment(VkCommandBuffer cmd, engine::GBuf
 Status IndirectLighting::setEnvironment(const EnvironmentImage& e) {
   if (e.width == 0) {
     impl_->environmentSet = false;
+    ++impl_->environmentSerial;
     return {};
   }
   // 32768 x 16384 is already 8 GiB of texels: larger is a mistake, not an environment.
@@ -748,6 +866,7 @@ Status IndirectLighting::setEnvironment(const EnvironmentImage& e) {
     return failure(std::string("EnvironmentImage: ") + ex.what());
   }
   impl_->environmentSet = true;
+  ++impl_->environmentSerial;
   return {};
 }
 
@@ -756,6 +875,7 @@ Status IndirectLighting::record(VkCommandBuffer cmd, const FrameInput& input, Fr
   try {
     impl_->record(cmd, input, *output);
   } catch (const std::exception& e) {
+    impl_->last = {};  // what the stopped frame recorded may not be submitted
     return failure(e.what());
   }
   return {};

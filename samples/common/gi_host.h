@@ -1,5 +1,5 @@
 // How the sample programs, as hosts, talk to the module's public API: its engine resources
-// become the API's plain handles, the module's outputs come back as images, and the pass times
+// become the API's plain handles and the module's outputs come back as images.
 // Nothing here reaches behind gi/include.
 #pragma once
 

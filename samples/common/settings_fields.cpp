@@ -181,6 +181,8 @@ std::vector<SettingField> makeTable() {
       onOff(kPlanner, "planner.skipGlossyWithoutSpecular",
             SETTING_ACCESS(planner.skipGlossyWithoutSpecular),
             "no glossy term on texels with F0 = F90 = 0"),
+      onOff(kPlanner, "reuse", SETTING_ACCESS(reuse),
+            "rerun a pass only when its inputs changed since it last ran (bit-identical)"),
       // Adaptive shading
       onOff(kAdaptive, "adaptive.enabled", SETTING_ACCESS(adaptive.enabled),
             "shade coarse to fine, interpolating where surface, material and light agree"),

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "engine/error.h"
+#include "scene_files.h"
 
 namespace samples {
 namespace {
@@ -190,8 +191,19 @@ std::string formatPathFrame(const PathFrame& frame, uint32_t index) {
   return out;
 }
 
+namespace {
+
+// The file's directory made first, as every output of the sample programs.
+const std::string& withDirectory(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) createOutputDirectory(parent.string());
+  return path;
+}
+
+}  // namespace
+
 ViewPathWriter::ViewPathWriter(const std::string& path)
-    : path_(path), file_(path, std::ios::binary | std::ios::trunc) {
+    : path_(path), file_(withDirectory(path), std::ios::binary | std::ios::trunc) {
   file_ << kHeader << '\n' << std::flush;
   if (!file_) throw engine::Error(path_ + ": cannot write");
 }

@@ -246,12 +246,12 @@ int run(Options o) {
     std::printf("%s", usage());
     return 0;
   }
-  const flicker::Motion motion = flicker::parseMotion(o.motion);
+  const samples::Motion motion = samples::parseMotion(o.motion);
   std::vector<samples::PathFrame> path;
-  if (motion == flicker::Motion::Path) path = readPath(o);
+  if (motion == samples::Motion::Path) path = readPath(o);
   engine::Scene base = samples::loadScene(o.scene);
   samples::selectCamera(base, o.camera);
-  if (motion == flicker::Motion::Path) {
+  if (motion == samples::Motion::Path) {
     if (o.lightGiven)
       std::printf("--light: not applied: the lights recorded in %s replace the scene's\n",
                   o.path.c_str());
@@ -261,7 +261,7 @@ int run(Options o) {
     if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
     samples::bouncingLights(base);  // fails before any work
   }
-  if (motion == flicker::Motion::Sweep) flicker::sweptLight(base);  // fails before any work
+  if (motion == samples::Motion::Sweep) samples::sweptLight(base);  // fails before any work
   std::vector<gi::Settings> settings;
   for (const std::string& word : o.methods) settings.push_back(methodSettings(word, o));
   const std::filesystem::path out(o.outDir);
@@ -288,10 +288,10 @@ int run(Options o) {
   csv << "frame,method,image_flicker,vsgl_power_change,relative_mse\n";
 
   for (uint32_t t = 0; t < o.frames; ++t) {
-    const flicker::Frame f = flicker::makeFrame(base, motion, t, o.frames, o.width, o.height,
-                                                motion == flicker::Motion::Path ? &path : nullptr);
+    const samples::Frame f = samples::makeFrame(base, motion, t, o.frames, o.width, o.height,
+                                                motion == samples::Motion::Path ? &path : nullptr);
     const std::vector<uint32_t> lights = samples::bouncingLights(f.scene);  // a path's vary
-    if (!gpuScene || motion == flicker::Motion::Move)  // every earlier submission has completed
+    if (!gpuScene || motion == samples::Motion::Move)  // every earlier submission has completed
       gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, f.scene));
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       rasterizer.record(cmd, *gpuScene, f.view.viewProj, {&visibility, 0, o.width, o.height});
@@ -333,7 +333,7 @@ int run(Options o) {
       if (t == 0) {
         captures.push_back({o.methods[m], samples::createIndirect(ctx, settings[m], o.width,
                                                                   o.height, *gpuScene, f.scene)});
-      } else if (motion == flicker::Motion::Move) {
+      } else if (motion == samples::Motion::Move) {
         samples::check(captures[m].lighting->setScene(samples::sceneGeometry(*gpuScene, f.scene)));
       }
       Capture& c = captures[m];
@@ -380,7 +380,7 @@ int run(Options o) {
                   {"count", o.count},         {"pdf", o.pdf},
                   {"reference", o.reference}, {"block", o.block},
                   {"methods", json::array()}};
-  if (motion == flicker::Motion::Path) summary["path"] = o.path;
+  if (motion == samples::Motion::Path) summary["path"] = o.path;
   const double pairs = double(o.frames - 1);
   std::printf("%-14s %14s %18s %12s\n", "method", "image flicker", "VSGL power change",
               "mean relMSE");

@@ -59,6 +59,7 @@ int run(const render::Options& o) {
   std::string stem = std::filesystem::path(o.scene).stem().string();
   if (!o.exportGltf.empty()) engine::writeGltf(scene, o.exportGltf);
   engine::View view = samples::sceneView(scene, o.width, o.height);
+  if (o.motion == samples::Motion::Sweep) samples::sweptLight(scene);  // fails before any work
   samples::createOutputDirectory(o.outDir);
 
   engine::Context ctx({o.validation, o.device});
@@ -68,7 +69,7 @@ int run(const render::Options& o) {
               render::shadowResolutionFor(o), o.shadows ? "" : " (off)");
   if (!lightNote.empty()) std::printf("%s\n", lightNote.c_str());
 
-  engine::SceneGpu gpuScene = engine::uploadScene(ctx, scene);
+  auto gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, scene));
   samples::HostFrame host(ctx, scene, o.width, o.height,
                           {render::shadowResolutionFor(o), o.shadows});
 
@@ -78,7 +79,7 @@ int run(const render::Options& o) {
   // Every light of the scene bounces, up to the module's limit.
   const size_t bouncing = std::min<size_t>(scene.lights.size(), gi::kMaxLights);
   if (o.indirect && (bouncing > 0 || environment))
-    indirect = samples::createIndirect(ctx, o.gi, o.width, o.height, gpuScene, scene);
+    indirect = samples::createIndirect(ctx, o.gi, o.width, o.height, *gpuScene, scene);
   if (o.indirect && bouncing == 0)
     std::printf("indirect: %s, the scene has no light to bounce\n",
                 environment ? "environment light only" : "skipped");
@@ -87,9 +88,6 @@ int run(const render::Options& o) {
                 bouncing, scene.lights.size());
   // Without a light the module still shades the environment: no light, no VSGL pass.
   gi::FrameInput input;
-  if (indirect)
-    input = samples::frameInput(host.gbuffer(), view,
-                                std::span<const engine::Light>(scene.lights.data(), bouncing));
   if (indirect && environment) {
     samples::check(indirect->setEnvironment(
         {uint32_t(environment->width), uint32_t(environment->height), environment->pixels.data()}));
@@ -105,14 +103,38 @@ int run(const render::Options& o) {
   engine::GpuProfiler profiler(ctx);
   render::PassTable passTimes;
   gi::FrameOutput output;
-  for (uint32_t frame = 0; frame < o.warmup + o.frames; ++frame) {
+  // The host numbers what it renders, so that the module can keep what did not change
+  // (gi::FrameInput::gbufferGeneration, sceneGeneration; docs/techniques/reuse.md). The motion
+  // moves the camera, a light or a box: a moved box is a new scene (setScene).
+  uint64_t gbufferGeneration = 0;
+  const uint32_t sequence = o.warmup + o.frames;
+  for (uint32_t frame = 0; frame < sequence; ++frame) {
+    const samples::Frame f =
+        samples::makeFrame(scene, o.motion, frame, sequence, o.width, o.height, nullptr);
+    // A swept light changes the host's direct light, not the G-buffer.
+    if (frame == 0 || f.view.viewProj != view.viewProj || o.motion == samples::Motion::Move)
+      ++gbufferGeneration;
+    view = f.view;
+    if (o.motion == samples::Motion::Move) {  // every earlier frame has completed
+      gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, f.scene));
+      if (indirect) samples::check(indirect->setScene(samples::sceneGeometry(*gpuScene, f.scene)));
+    }
+    if (o.motion == samples::Motion::Sweep) host.setLights(ctx, f.scene);
+    if (indirect) {
+      input = samples::frameInput(host.gbuffer(), view,
+                                  std::span<const engine::Light>(f.scene.lights.data(), bouncing));
+      input.gbufferGeneration = gbufferGeneration;
+      input.sceneGeneration = 1;  // the scene's buffers never change in place here
+    }
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       profiler.beginFrame(cmd);
       engine::ProfileScope total(&profiler, cmd, "host frame");
-      host.record(cmd, gpuScene, view, &profiler);
+      host.record(cmd, *gpuScene, view, &profiler);
       if (indirect) samples::check(indirect->record(cmd, input, &output));
     });
     if (frame < o.warmup) continue;  // lavapipe compiles pipelines at their first dispatch
+    // A pass that did not run in a frame (kept from an earlier one) counts 0 there.
+    passTimes.beginFrame();
     for (const auto& pass : profiler.results()) passTimes.add(pass.name, pass.ms, pass.dispatches);
     if (indirect)
       for (const auto& pass : indirect->lastFrameTimes())
@@ -125,9 +147,16 @@ int run(const render::Options& o) {
     shaded = counts.shaded[0] + counts.shaded[1] + counts.shaded[2] + counts.shaded[3];
   passTimes.print(o.frames, indirect ? o.gi.vsglCount : 0, shaded);
   // The effect planner's decisions for the last frame: what it left out, and why.
-  if (indirect)
+  if (indirect) {
     for (const std::string& reason : indirect->lastPlan().reasons)
       std::printf("plan: %s\n", reason.c_str());
+    for (const std::string& reason : indirect->lastPlan().reuse.reasons)
+      std::printf("%s\n", reason.c_str());
+    if (indirect->lastPlan().reuse.shading && o.motion == samples::Motion::Static)
+      std::printf(
+          "reuse: a still view: the measured frames kept the warm-up frame's work (the gi rows "
+          "are 0); --reuse off or --motion orbit|sweep|move times the passes\n");
+  }
   if (counts.adaptive) {
     const uint32_t surface = o.width * o.height - counts.skyPixels;
     std::printf("adaptive shading: %u texels shaded for %u surface pixels (%.1f %%); per level:",

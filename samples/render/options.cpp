@@ -25,6 +25,12 @@ const char* usage() {
          "  --frames N           measured frames, 1..1000 (default 3)\n"
          "  --warmup N           unmeasured frames before them, 0..100 (default 1; the first\n"
          "                       frame also pays for compiling the pipelines)\n"
+         "  --motion NAME        what moves over the frames, as in vsgl_flicker: static "
+         "(default),\n"
+         "                       orbit (the camera), sweep (the first spot or directional light)\n"
+         "                       or move (a box slides across the floor)\n"
+         "  --reuse on|off       reuse across frames: a pass reruns only when its inputs changed\n"
+         "                       (default on; docs/techniques/reuse.md)\n"
          "  --shadow-res N       shadow-map texels per side, 16..4096 (default: from the image "
          "size)\n"
          "  --no-shadows         direct light without shadow maps\n"
@@ -118,6 +124,14 @@ Options parseOptions(int argc, char** argv) {
       o.frames = parseUint(arg, args.value(), 1, 1000);
     else if (arg == "--warmup")
       o.warmup = parseUint(arg, args.value(), 0, 100);
+    else if (arg == "--motion")
+      o.motion = parseChoice<samples::Motion>(arg, args.value(),
+                                              {{"static", samples::Motion::Static},
+                                               {"orbit", samples::Motion::Orbit},
+                                               {"sweep", samples::Motion::Sweep},
+                                               {"move", samples::Motion::Move}});
+    else if (arg == "--reuse")
+      o.gi.reuse = parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--shadow-res")
       o.shadowResolution = parseUint(arg, args.value(), 16, 4096);
     else if (arg == "--no-shadows")

@@ -8,6 +8,7 @@
 
 #include "default_light.h"
 #include "gi/settings.h"
+#include "motion.h"
 
 namespace render {
 
@@ -16,8 +17,10 @@ struct Options {
   std::string outDir = "out";
   uint32_t width = 640;
   uint32_t height = 360;
-  uint32_t frames = 3;            // measured frames
-  uint32_t warmup = 1;            // unmeasured frames before them
+  uint32_t frames = 3;  // measured frames
+  uint32_t warmup = 1;  // unmeasured frames before them
+  // What moves over the warm-up and measured frames (samples/common/motion.h; not Path).
+  samples::Motion motion = samples::Motion::Static;
   uint32_t shadowResolution = 0;  // 0 = automatic: see shadowResolutionFor()
   bool shadows = true;
   std::optional<float> exposureEv;

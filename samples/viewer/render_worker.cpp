@@ -101,6 +101,10 @@ struct RenderWorker::State {
   std::unique_ptr<engine::GpuProfiler> profiler;
   int32_t visibilityVsgl = -1;
   uint64_t frames = 0;
+  // The G-buffer's number (gi::FrameInput::gbufferGeneration): a new one whenever the host
+  // renders a different G-buffer (scene, size or camera), so that the module keeps the rest.
+  uint64_t gbufferGeneration = 0;
+  glm::mat4 gbufferViewProj{0.0f};
 
   // A module for `settings` at the frame's size: the one there, with new settings, unless a
   // creation field changed (setSettings refuses) or it has another size.
@@ -131,6 +135,7 @@ FrameResult RenderWorker::State::render(const FrameRequest& r) {
     scene = *r.scene;
     scene.lights = r.lights;
     gpuScene.emplace(engine::uploadScene(*ctx, scene));
+    ++gbufferGeneration;
     sceneSource = r.scene;
     visibilityVsgl = -1;
   }
@@ -156,6 +161,7 @@ FrameResult RenderWorker::State::render(const FrameRequest& r) {
     host = std::make_unique<samples::HostFrame>(
         *ctx, scene, r.width, r.height,
         engine::DirectLightSettings{shadowResolution(r.width, r.height), true});
+    ++gbufferGeneration;
   } else if (lightsChanged) {
     host->setLights(*ctx, scene);
   }
@@ -177,10 +183,15 @@ FrameResult RenderWorker::State::render(const FrameRequest& r) {
   else
     right.reset();
 
+  if (view.viewProj != gbufferViewProj) ++gbufferGeneration;
+  gbufferViewProj = view.viewProj;
   gi::FrameInput input;
-  if (indirect)
+  if (indirect) {
     input = samples::frameInput(host->gbuffer(), view,
                                 std::span<const engine::Light>(scene.lights.data(), bouncing));
+    input.gbufferGeneration = gbufferGeneration;
+    input.sceneGeneration = 1;  // a new scene is a new module's (setScene), never edited in place
+  }
   gi::FrameOutput leftOut, rightOut;
   if (!profiler) profiler = std::make_unique<engine::GpuProfiler>(*ctx);
   ctx->submitAndWait([&](VkCommandBuffer cmd) {

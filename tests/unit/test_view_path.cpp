@@ -288,20 +288,29 @@ TEST(ViewPath, MoreThan1000FramesAreRefused) {
   std::filesystem::remove(path);
 }
 
+// A missing directory is made, as for every output of the sample programs; one that cannot be
+// (its parent is a file) is named.
 TEST(ViewPath, FilesThatCannotBeReadOrWrittenAreNamed) {
-  const std::string missing = tempPath("missing_dir") + "/none.txt";
+  const std::string directory = tempPath("missing_dir");
+  std::filesystem::remove_all(directory);
+  const std::string missing = directory + "/none.txt";
   try {
     samples::readViewPath(missing);
     ADD_FAILURE() << "read a missing file";
   } catch (const engine::Error& e) {
     EXPECT_EQ(std::string(e.what()), missing + ": cannot read");
   }
+  { samples::ViewPathWriter writer(missing); }
+  EXPECT_TRUE(std::filesystem::is_regular_file(missing));
+  const std::string blocked = missing + "/path.txt";  // under a file
   try {
-    samples::ViewPathWriter writer(missing);
-    ADD_FAILURE() << "wrote into a missing directory";
+    samples::ViewPathWriter writer(blocked);
+    ADD_FAILURE() << "wrote under a file";
   } catch (const engine::Error& e) {
-    EXPECT_EQ(std::string(e.what()), missing + ": cannot write");
+    EXPECT_EQ(std::string(e.what()).rfind(missing + ": cannot create output directory", 0), 0u)
+        << e.what();
   }
+  std::filesystem::remove_all(directory);
 }
 
 // tests/data/paths/orbit3.txt (vsgl_flicker's smoke test replays it): the built-in checker's

@@ -157,6 +157,7 @@ struct Light {
   // at distance d scales the light that reaches the RSM, so the bounce ends where the host's direct
   // light does. Ignored for a directional light (KHR has no range for it).
   float range = 0.0f;
+  bool operator==(const Light&) const = default;
 };
 
 // The camera that produced the G-buffer: Vulkan clip space (NDC y down, depth [0, 1]),
@@ -192,6 +193,16 @@ struct FrameInput {
   // costs its RSM, attribute and PDF passes (lavapipe: about 45 ms at rsmSize 256) and 128 x
   // rsmSize^2 x 4/3 bytes of attribute pyramids (8.4 MB at 256).
   std::vector<Light> lights;
+  // What changed since earlier frames, for reuse across frames (Settings::reuse,
+  // docs/techniques/reuse.md): each is a number the host changes whenever the content it names
+  // changes and keeps while it does not. 0 means "not known" and counts as a change in every
+  // frame, so a host that leaves them at 0 gets every pass in every frame.
+  // The G-buffer images' content: whatever the host rendered differently (a new camera, moved
+  // geometry, edited materials). The images' handles and the camera are compared besides.
+  uint64_t gbufferGeneration = 0;
+  // The content of SceneGeometry's buffers and textures (vertices moved in place, materials
+  // edited). A setScene call is a change by itself.
+  uint64_t sceneGeneration = 0;
 };
 
 struct FrameOutput {
@@ -235,7 +246,20 @@ struct FramePlan {
   bool environment = false;           // the environment was shaded (an environment is set)
   bool environmentConverted = false;  // ... and converted this frame (it changed)
   std::vector<uint32_t> lights;       // the FrameInput::lights that bounced, by index
-  std::vector<std::string> reasons;   // one line per decision that left work out
+  // Reuse across frames (Settings::reuse): what this frame kept from the frame that last
+  // computed it instead of recording its passes again. Nothing reused when all are false/0.
+  struct Reuse {
+    bool gbuffer = false;      // the converted G-buffer (depth and normal encodings)
+    bool importance = false;   // BRSM stage A's importance VSGLs
+    uint32_t lightViews = 0;   // RSM views whose RSM, flux and attribute pyramids were kept
+    bool vsgls = false;        // the VSGLs, with their PDF and allocation
+    bool isms = false;         // the imperfect shadow maps
+    bool shading = false;      // the outputs (indirect images, levels, debug visibility)
+    bool environment = false;  // the environment's outputs
+    // One line per stage kept and why, or why a host gets no reuse (e.g. no generation numbers).
+    std::vector<std::string> reasons;
+  } reuse;
+  std::vector<std::string> reasons;  // one line per decision that left work out
 };
 
 // What adaptive shading (Settings::adaptive) and VSGL culling did in the last frame, per level

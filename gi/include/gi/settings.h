@@ -47,6 +47,7 @@ struct KmeansSettings {
   // Start each frame from the previous frame's centres (temporally coherent, [PKD12]); false:
   // fresh PDF-proportional seeds every frame. Changing vsglCount or the method reseeds.
   bool temporal = true;
+  bool operator==(const KmeansSettings&) const = default;
 };
 
 // Which PDF the VSGLs sample over the RSM (vsgl-math.md section 7).
@@ -68,6 +69,7 @@ struct BrsmSettings {
   // Share e in (0, 1] of the flux-proportional PDF mixed in: every lit texel keeps p > 0, so no
   // light is lost where the importance estimate is zero; 1 = the flux PDF. No cost.
   float fluxMix = 0.1f;
+  bool operator==(const BrsmSettings&) const = default;
 };
 
 // Percentage-closer filtering of the ISM depth test (shaders/shared/ism.h ISM_PCF_*).
@@ -101,6 +103,7 @@ struct IsmSettings {
   // IsmNearest (1 texel), IsmBilinear (2 x 2, default) or IsmBox3 (3 x 3). Cost: 1, 4 or 9
   // atlas reads per pixel-VSGL pair.
   uint32_t pcf = IsmBilinear;
+  bool operator==(const IsmSettings&) const = default;
 };
 
 // The effect planner's decisions (docs/integration.md, "The effect planner"), each of which can
@@ -123,6 +126,7 @@ struct PlannerSettings {
   // strength 0) are shaded without it. Per texel, in adaptive shading's queues (with adaptive
   // shading off every pixel runs the glossy term).
   bool skipGlossyWithoutSpecular = true;
+  bool operator==(const PlannerSettings&) const = default;
 };
 
 // Adaptive shading (docs/techniques/adaptive-shading.md, after [S4] section 3.2): the VSGL sum
@@ -148,6 +152,7 @@ struct AdaptiveSettings {
   // between a texel and its parents: light is not carried across a material edge.
   float roughnessTolerance = 0.05f;
   float f0Tolerance = 0.02f;
+  bool operator==(const AdaptiveSettings&) const = default;
 };
 
 // VSGL culling (docs/techniques/vsgl-culling.md): per subgroup of pixels shaded together (the
@@ -160,6 +165,7 @@ struct AdaptiveSettings {
 struct CullingSettings {
   bool enabled = false;
   float budget = 0.01f;  // tau, [0, 0.5]; larger = more VSGLs skipped, more light lost
+  bool operator==(const CullingSettings&) const = default;
 };
 
 // Environment lighting (docs/techniques/environment.md), used when the host has set an
@@ -197,6 +203,7 @@ struct EnvironmentSettings {
   // Creation. Texels per side of each paraboloid map S, a power of two in [16, 2048]. Cost:
   // 32 S^2 bytes with mips, converted once per environment.
   uint32_t mapSize = 256;
+  bool operator==(const EnvironmentSettings&) const = default;
 };
 
 struct Settings {
@@ -246,6 +253,13 @@ struct Settings {
   // Debug: index of the VSGL whose ISM visibility is written to FrameOutput::debugVisibility,
   // or -1 for none. Cost: one extra pass over the pixels.
   int32_t debugVsgl = -1;
+  // Reuse across frames (docs/techniques/reuse.md): a pass reruns only when one of its inputs
+  // changed since it last ran; every frame is bit-identical to the same frame with reuse off.
+  // Needs the host to number its G-buffer and geometry (FrameInput::gbufferGeneration,
+  // sceneGeneration); a host that leaves them 0 gets every pass every frame. No cost.
+  bool reuse = true;
+
+  bool operator==(const Settings&) const = default;
 };
 
 // Empty when every field is in range, else one line naming the first bad field, e.g.

@@ -8,7 +8,7 @@
 #include "engine/error.h"
 #include "gi_host.h"
 
-namespace flicker {
+namespace samples {
 namespace {
 
 constexpr float kOrbitDegrees = 30.0f;
@@ -73,7 +73,7 @@ Motion parseMotion(const std::string& word) {
 }
 
 uint32_t sweptLight(const engine::Scene& scene) {
-  const int light = samples::firstDirectedLight(scene);
+  const int light = firstDirectedLight(scene);
   if (light < 0)
     throw engine::Error("--motion sweep: " + scene.source +
                         " has no spot or directional light to turn");
@@ -81,7 +81,7 @@ uint32_t sweptLight(const engine::Scene& scene) {
 }
 
 Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t frames,
-                uint32_t width, uint32_t height, const std::vector<samples::PathFrame>* path) {
+                uint32_t width, uint32_t height, const std::vector<PathFrame>* path) {
   Frame f{base, {}};
   const engine::Bounds b = base.bounds();
   const glm::vec3 centre = 0.5f * (b.min + b.max), extent = b.max - b.min;
@@ -101,7 +101,7 @@ Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t f
   }
   if (motion == Motion::Path) {
     assert(path && path->size() == frames);
-    const samples::PathFrame& recorded = path->at(t);
+    const PathFrame& recorded = path->at(t);
     camera = recorded.camera;
     f.scene.lights = recorded.lights;
   }
@@ -109,4 +109,4 @@ Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t f
   return f;
 }
 
-}  // namespace flicker
+}  // namespace samples

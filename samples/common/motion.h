@@ -1,6 +1,6 @@
-// The animated sequences of vsgl_flicker (docs/flicker.md): the scene, camera and light of frame
-// t of a motion. Each motion moves one thing, so that a capture shows the flicker that one kind
-// of change causes:
+// The animated sequences of vsgl_flicker (docs/flicker.md) and vsgl_render --motion: the scene,
+// camera and light of frame t of a motion. Each motion moves one thing, so that a capture shows
+// the flicker, and a timing the cost, that one kind of change causes:
 //   static  nothing moves (every flicker figure must be exactly 0: the pipeline is deterministic)
 //   orbit   the camera turns 30 degrees about the vertical axis through the scene's centre: the
 //           view-dependent BRSM PDF changes, the RSM does not
@@ -20,7 +20,7 @@
 #include "engine/view.h"
 #include "view_path.h"
 
-namespace flicker {
+namespace samples {
 
 enum class Motion { Static, Orbit, Sweep, Move, Path };
 
@@ -40,6 +40,6 @@ uint32_t sweptLight(const engine::Scene& scene);
 // width x height. `path` holds the recorded frames of Motion::Path (frames of them; nullptr for
 // the other motions).
 Frame makeFrame(const engine::Scene& base, Motion motion, uint32_t t, uint32_t frames,
-                uint32_t width, uint32_t height, const std::vector<samples::PathFrame>* path);
+                uint32_t width, uint32_t height, const std::vector<PathFrame>* path);
 
-}  // namespace flicker
+}  // namespace samples
