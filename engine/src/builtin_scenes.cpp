@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <numbers>
 #include <utility>
 
 #include "engine/error.h"
@@ -71,6 +73,40 @@ class ProceduralScene {
     addRect(c - hx + hz, 2.0f * hx, up, material, maxCell);               // +Z side
     addRect(c + hx - hz, -2.0f * hx, up, material, maxCell);              // -Z side
     addRect(c + up - hx + hz, 2.0f * hx, -2.0f * hz, material, maxCell);  // top
+  }
+
+  // A UV sphere of about `triangles` triangles (at least 8 stacks by 16 slices), faces out.
+  void addSphere(glm::vec3 centre, float radius, uint32_t triangles, uint32_t material) {
+    // slices = 2 stacks: 2 slices (stacks - 1) = 4 stacks^2 - 4 stacks triangles.
+    const auto stacks = std::max(
+        8u, static_cast<uint32_t>(std::lround(0.5 + std::sqrt(0.25 + double(triangles) / 4.0))));
+    const uint32_t slices = 2 * stacks;
+    const auto base = static_cast<uint32_t>(scene_.positions.size());
+    for (uint32_t j = 0; j <= stacks; ++j) {
+      const float theta = std::numbers::pi_v<float> * float(j) / float(stacks);
+      for (uint32_t i = 0; i <= slices; ++i) {
+        const float phi = 2.0f * std::numbers::pi_v<float> * float(i) / float(slices);
+        const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                          -std::sin(theta) * std::sin(phi));
+        scene_.positions.push_back(centre + radius * n);
+        scene_.normals.push_back(n);
+        scene_.uvs.emplace_back(float(i) / float(slices), float(j) / float(stacks));
+      }
+    }
+    for (uint32_t j = 0; j < stacks; ++j)
+      for (uint32_t i = 0; i < slices; ++i) {
+        const uint32_t v00 = base + j * (slices + 1) + i, v10 = v00 + 1;
+        const uint32_t v01 = v00 + slices + 1, v11 = v01 + 1;
+        // The poles' rows have one triangle per cell, the others two.
+        if (j > 0) {
+          scene_.indices.insert(scene_.indices.end(), {v00, v01, v10});
+          scene_.triangleMaterial.push_back(material);
+        }
+        if (j + 1 < stacks) {
+          scene_.indices.insert(scene_.indices.end(), {v10, v01, v11});
+          scene_.triangleMaterial.push_back(material);
+        }
+      }
   }
 
   void addSpotLight(const std::string& name, glm::vec3 position, glm::vec3 target, float intensity,
@@ -384,7 +420,34 @@ Scene makeLounge() {
   return s.take();
 }
 
+// The Cornell box with `triangles` more in white UV spheres: one on the floor in the spot's
+// cone, or (`outside`) a tenth of them there and the rest in a sphere above the ceiling,
+// outside the spot's cone and the camera's view.
+Scene makeSphereRoom(uint32_t triangles, bool outside, const std::string& name) {
+  Scene room = makeCornell();
+  ProceduralScene s(name);
+  const uint32_t white = s.addMaterial("sphere white", glm::vec3(0.73f), 0.9f, 0.0f);
+  const uint32_t inside = outside ? triangles / 10 : triangles;
+  s.addSphere({-1.15f, 0.3f, -0.45f}, 0.3f, inside, white);
+  if (outside) s.addSphere({0.0f, 3.2f, 1.2f}, 0.6f, triangles - inside, white);
+  Scene spheres = s.take();
+  const auto firstVertex = static_cast<uint32_t>(room.positions.size());
+  const auto firstMaterial = static_cast<uint32_t>(room.materials.size());
+  room.positions.insert(room.positions.end(), spheres.positions.begin(), spheres.positions.end());
+  room.normals.insert(room.normals.end(), spheres.normals.begin(), spheres.normals.end());
+  room.uvs.insert(room.uvs.end(), spheres.uvs.begin(), spheres.uvs.end());
+  for (uint32_t index : spheres.indices) room.indices.push_back(firstVertex + index);
+  for (uint32_t m : spheres.triangleMaterial) room.triangleMaterial.push_back(firstMaterial + m);
+  room.materials.insert(room.materials.end(), spheres.materials.begin(), spheres.materials.end());
+  room.source = "builtin:" + name;
+  return room;
+}
+
 }  // namespace
+
+bool isGeneratedSceneName(const std::string& name) {
+  return name.rfind("sphere-room:", 0) == 0 || name.rfind("sphere-room-outside:", 0) == 0;
+}
 
 std::vector<std::string> builtinSceneNames() {
   return {"cornell", "atrium", "checker", "lounge"};
@@ -401,6 +464,15 @@ Scene makeBuiltinScene(const std::string& name) {
   if (name == "atrium") return makeAtrium();
   if (name == "checker") return makeChecker();
   if (name == "lounge") return makeLounge();
+  if (isGeneratedSceneName(name)) {
+    const std::string count = name.substr(name.find(':') + 1);
+    char* end = nullptr;
+    const unsigned long long n = std::strtoull(count.c_str(), &end, 10);
+    if (count.empty() || *end != '\0' || count[0] == '-' || n < 1000 || n > 16000000)
+      throw Error("--scene: '" + name + "': the sphere triangle count must be a whole number in " +
+                  "[1000, 16000000]");
+    return makeSphereRoom(uint32_t(n), name.rfind("sphere-room-outside:", 0) == 0, name);
+  }
   throw Error("unknown built-in scene '" + name + "' (choices: " + builtinSceneList() + ")");
 }
 

@@ -18,7 +18,8 @@ bool isBuiltinScene(const std::string& name) {
 }
 
 engine::Scene loadScene(const std::string& name) {
-  if (isBuiltinScene(name)) return engine::makeBuiltinScene(name);
+  if (isBuiltinScene(name) || engine::isGeneratedSceneName(name))
+    return engine::makeBuiltinScene(name);
   std::string extension = std::filesystem::path(name).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

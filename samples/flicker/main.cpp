@@ -22,6 +22,7 @@
 #include "engine/gbuffer.h"
 #include "engine/gbuffer_reference.h"
 #include "engine/image_metrics.h"
+#include "engine/profiler.h"
 #include "engine/rasterizer.h"
 #include "engine/tonemap.h"
 #include "gi_host.h"
@@ -48,6 +49,7 @@ struct Options {
   uint32_t count = 128;
   uint32_t block = 8;
   uint32_t warmup = 64;
+  bool reuse = true;  // gi::Settings::reuse of every method
   std::vector<std::string> methods = {"tok15", "modified", "modified-k4", "kmeans-2d", "kmeans-3d"};
   std::string pdf = "brsm";
   std::string reference = "vpl";
@@ -75,6 +77,9 @@ const char* usage() {
          "                     file's)\n"
          "  --width N --height N  image size, 1..4096 (default 160x90)\n"
          "  --count N          VSGLs, 1..32768 (default 128)\n"
+         "  --reuse on|off     reuse across frames in every method (default on; the summary's\n"
+         "                     frame_ms is the module's median GPU time per frame after the\n"
+         "                     first, docs/techniques/reuse.md)\n"
          "  --warmup N         frames of the first frame each method renders first, 0..1000\n"
          "                     (default 64: k-means converges from its seeds)\n"
          "  --block N          the image flicker compares N x N pixel block means, 1..64 (1 =\n"
@@ -121,6 +126,8 @@ Options parseOptions(int argc, char** argv) {
       o.count = samples::parseUint(arg, args.value(), 1, gi::kMaxVsglCount);
     else if (arg == "--warmup")
       o.warmup = samples::parseUint(arg, args.value(), 0, 1000);
+    else if (arg == "--reuse")
+      o.reuse = samples::parseChoice<bool>(arg, args.value(), {{"on", true}, {"off", false}});
     else if (arg == "--block")
       o.block = samples::parseUint(arg, args.value(), 1, 64);
     else if (arg == "--methods")
@@ -218,6 +225,7 @@ struct Capture {
   std::vector<glm::dvec3> previous;
   std::vector<double> previousPower;
   double flickerSum = 0.0, powerChangeSum = 0.0, relativeMseSum = 0.0;
+  std::vector<double> frameMs;                // the module's GPU time in each frame after the first
   std::vector<std::vector<uint8_t>> preview;  // tone-mapped, at the previewFrames
 };
 
@@ -263,7 +271,10 @@ int run(Options o) {
   }
   if (motion == samples::Motion::Sweep) samples::sweptLight(base);  // fails before any work
   std::vector<gi::Settings> settings;
-  for (const std::string& word : o.methods) settings.push_back(methodSettings(word, o));
+  for (const std::string& word : o.methods) {
+    settings.push_back(methodSettings(word, o));
+    settings.back().reuse = o.reuse;
+  }
   const std::filesystem::path out(o.outDir);
   samples::createOutputDirectory(o.outDir);
   for (const std::string& name : o.methods) samples::createOutputDirectory((out / name).string());
@@ -287,9 +298,14 @@ int run(Options o) {
   std::ofstream csv(out / "flicker.csv");
   csv << "frame,method,image_flicker,vsgl_power_change,relative_mse\n";
 
+  // The G-buffer's number (gi::FrameInput::gbufferGeneration): a new one when the camera or
+  // the scene moved, so that each module keeps what did not change (--reuse).
+  uint64_t gbufferGeneration = 0;
   for (uint32_t t = 0; t < o.frames; ++t) {
     const samples::Frame f = samples::makeFrame(base, motion, t, o.frames, o.width, o.height,
                                                 motion == samples::Motion::Path ? &path : nullptr);
+    if (t == 0 || f.view.viewProj != previousView.viewProj || motion == samples::Motion::Move)
+      ++gbufferGeneration;
     const std::vector<uint32_t> lights = samples::bouncingLights(f.scene);  // a path's vary
     if (!gpuScene || motion == samples::Motion::Move)  // every earlier submission has completed
       gpuScene = std::make_unique<engine::SceneGpu>(engine::uploadScene(ctx, f.scene));
@@ -328,7 +344,9 @@ int run(Options o) {
       reprojection = flicker::reproject(previousGBuffer, previousView, decoded, f.view);
       previousReferenceAligned = flicker::resample(previousReference, reprojection);
     }
-    const gi::FrameInput input = samples::frameInput(gbuffer, f.view, f.scene.lights);
+    gi::FrameInput input = samples::frameInput(gbuffer, f.view, f.scene.lights);
+    input.gbufferGeneration = gbufferGeneration;
+    input.sceneGeneration = 1;  // a moved box is a new scene (setScene)
     for (size_t m = 0; m < o.methods.size(); ++m) {
       if (t == 0) {
         captures.push_back({o.methods[m], samples::createIndirect(ctx, settings[m], o.width,
@@ -341,6 +359,9 @@ int run(Options o) {
       for (uint32_t w = 0; w <= (t == 0 ? o.warmup : 0); ++w)
         ctx.submitAndWait(
             [&](VkCommandBuffer cmd) { samples::check(c.lighting->record(cmd, input, &output)); });
+      if (t > 0)
+        for (const gi::PassTime& pass : c.lighting->lastFrameTimes())
+          if (pass.name == "frame") c.frameMs.push_back(pass.ms);
       const std::vector<glm::dvec3> image =
           samples::indirectSum(samples::readIndirect(ctx, output, o.width, o.height));
       const std::vector<double> power = vsglPowers(samples::readVsgls(ctx, output));
@@ -374,23 +395,24 @@ int run(Options o) {
   }
 
   // The summary: per method the mean of each figure over the frame pairs.
-  json summary = {{"scene", o.scene},         {"motion", o.motion},
-                  {"frames", o.frames},       {"warmup", o.warmup},
-                  {"width", o.width},         {"height", o.height},
-                  {"count", o.count},         {"pdf", o.pdf},
-                  {"reference", o.reference}, {"block", o.block},
-                  {"methods", json::array()}};
+  json summary = {{"scene", o.scene},   {"motion", o.motion}, {"frames", o.frames},
+                  {"warmup", o.warmup}, {"width", o.width},   {"height", o.height},
+                  {"count", o.count},   {"pdf", o.pdf},       {"reference", o.reference},
+                  {"block", o.block},   {"reuse", o.reuse},   {"methods", json::array()}};
   if (motion == samples::Motion::Path) summary["path"] = o.path;
   const double pairs = double(o.frames - 1);
-  std::printf("%-14s %14s %18s %12s\n", "method", "image flicker", "VSGL power change",
-              "mean relMSE");
+  std::printf("%-14s %14s %18s %12s %14s\n", "method", "image flicker", "VSGL power change",
+              "mean relMSE", "module ms");
   for (const Capture& c : captures) {
+    // The median over the frames after the first (0 when the timestamps were not available).
+    const double ms = c.frameMs.empty() ? 0.0 : engine::median(c.frameMs);
     summary["methods"].push_back({{"name", c.name},
                                   {"image_flicker", c.flickerSum / pairs},
                                   {"vsgl_power_change", c.powerChangeSum / pairs},
-                                  {"relative_mse", c.relativeMseSum / double(o.frames)}});
-    std::printf("%-14s %14.6f %18.6f %12.5f\n", c.name.c_str(), c.flickerSum / pairs,
-                c.powerChangeSum / pairs, c.relativeMseSum / double(o.frames));
+                                  {"relative_mse", c.relativeMseSum / double(o.frames)},
+                                  {"frame_ms", ms}});
+    std::printf("%-14s %14.6f %18.6f %12.5f %14.3f\n", c.name.c_str(), c.flickerSum / pairs,
+                c.powerChangeSum / pairs, c.relativeMseSum / double(o.frames), ms);
   }
   std::ofstream(out / "flicker_summary.json") << summary.dump(2) << "\n";
   std::ofstream table(out / "flicker_summary.csv");

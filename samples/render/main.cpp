@@ -57,6 +57,7 @@ int run(const render::Options& o) {
   const std::string lightNote = samples::applyLightChoice(scene, o.light, !o.environment.empty(),
                                                           float(o.width) / float(o.height));
   std::string stem = std::filesystem::path(o.scene).stem().string();
+  std::replace(stem.begin(), stem.end(), ':', '-');  // generated scenes: sphere-room:N
   if (!o.exportGltf.empty()) engine::writeGltf(scene, o.exportGltf);
   engine::View view = samples::sceneView(scene, o.width, o.height);
   if (o.motion == samples::Motion::Sweep) samples::sweptLight(scene);  // fails before any work

@@ -357,4 +357,44 @@ TEST(BuiltinScenes, DefaultCameraFramesTheBounds) {
   EXPECT_LE(std::asin(radius / glm::length(centre - eye)), 0.5f * camera.yfov + 1e-5f);
 }
 
+// The generated scenes of the scaling measurements: the Cornell box plus about N sphere
+// triangles (within 1 %: a whole number of stacks; far below 10 000 the smallest sphere, 8 x 16,
+// is larger), in the spot's cone or, for the "outside" variant, 90 % of them above the ceiling
+// (y > 2 m) where the downward spot cannot reach.
+TEST(BuiltinScenes, GeneratedSphereRooms) {
+  const engine::Scene cornell = engine::makeBuiltinScene("cornell");
+  for (const uint32_t n : {20000u, 100000u}) {
+    const engine::Scene inside = engine::makeBuiltinScene("sphere-room:" + std::to_string(n));
+    const engine::Scene outside =
+        engine::makeBuiltinScene("sphere-room-outside:" + std::to_string(n));
+    const double added = double(inside.triangleCount() - cornell.triangleCount());
+    EXPECT_NEAR(added, double(n), 0.01 * n + 64) << n;
+    EXPECT_NEAR(double(outside.triangleCount() - cornell.triangleCount()), double(n),
+                0.01 * n + 128)
+        << n;
+    uint32_t above = 0;
+    for (size_t t = cornell.triangleCount(); t < outside.triangleCount(); ++t) {
+      bool all = true;
+      for (int k = 0; k < 3; ++k)
+        all = all && outside.positions[outside.indices[3 * t + k]].y > 2.0f;
+      above += all;
+    }
+    const double share = double(above) / double(outside.triangleCount() - cornell.triangleCount());
+    EXPECT_NEAR(share, 0.9, 0.02) << n;
+    EXPECT_EQ(inside.lights.size(), 1u);
+    EXPECT_EQ(inside.source, "builtin:sphere-room:" + std::to_string(n));
+    EXPECT_TRUE(engine::isGeneratedSceneName("sphere-room:" + std::to_string(n)));
+  }
+  for (const std::string bad : {"sphere-room:", "sphere-room:999", "sphere-room:12x",
+                                "sphere-room:-5", "sphere-room:16000001"}) {
+    try {
+      engine::makeBuiltinScene(bad);
+      ADD_FAILURE() << bad;
+    } catch (const engine::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("whole number in [1000, 16000000]"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace

@@ -12,6 +12,11 @@
 //   lounge:  a 4.8 x 3.2 m living room with a sofa, a cabinet and a table, lit by one light
 //            of each type: a warm point light (a lamp), a cool and a red-orange ceiling spot,
 //            and a sun through a window in the left wall. The built-in many-lights case.
+// Generated scenes for scaling measurements (not in builtinSceneNames()):
+//   sphere-room:N          the Cornell box with a white UV sphere of about N triangles on the
+//                          floor, in the spot's cone (N in [1000, 16000000]).
+//   sphere-room-outside:N  the same N, a tenth on the floor and the rest in a sphere above the
+//                          ceiling, outside the spot's cone and the camera's view.
 #pragma once
 
 #include <string>
@@ -28,5 +33,7 @@ std::string builtinSceneList();
 
 // Scene::source is "builtin:<name>". Throws engine::Error for an unknown name.
 Scene makeBuiltinScene(const std::string& name);
+// Whether `name` is a generated scene's (sphere-room:N, sphere-room-outside:N).
+bool isGeneratedSceneName(const std::string& name);
 
 }  // namespace engine
