@@ -3,8 +3,13 @@
 // bit for bit in every frame. The host numbers its G-buffer and geometry as a real host would
 // (FrameInput::gbufferGeneration and sceneGeneration), and each test also checks that the
 // instance with reuse did keep work, so that equality is not won by never reusing anything.
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <random>
@@ -89,6 +94,14 @@ class Host {
   uint64_t gbufferGeneration_ = 0, sceneGeneration_ = 1;
 };
 
+// The process's resident memory, bytes (Linux /proc/self/statm).
+size_t residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  size_t pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * size_t(sysconf(_SC_PAGESIZE));
+}
+
 gi::Settings smallSettings() {
   gi::Settings s;
   s.rsmSize = 64;
@@ -168,6 +181,15 @@ class FrameReuseTest : public testing_gpu::GpuTest {
       (reuse ? t.on : t.off) = std::move(lighting);
     }
     return t;
+  }
+
+  // One host frame shaded by the instance with reuse only (no readback).
+  void shadeFrame(Host& host, Twins& t) {
+    gi::FrameOutput out;
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      host.record(cmd);
+      EXPECT_TRUE(t.on->record(cmd, host.input(), &out));
+    });
   }
 
   // One host frame shaded by both twins; fails on the first output that differs.
@@ -272,152 +294,197 @@ TEST_F(FrameReuseTest, EveryMotionAndMethodEqualsNoReuse) {
   }
 }
 
-// A random sequence of 200 changes of every kind a host makes, the two instances compared in
-// every frame. The Cornell box gets a second spot, so that two RSM views share the VSGLs, each
-// with its own pyramids (as a point light's six faces do; six cost too much time here).
-TEST_F(FrameReuseTest, RandomChangesEqualNoReuse) {
-  std::mt19937 random(26);
-  auto uniform = [&](float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(random);
-  };
-  engine::Scene cornell = engine::makeBuiltinScene("cornell");
-  engine::Light second = cornell.lights.front();
-  second.position += glm::vec3(0.4f, -0.3f, 0.2f);
-  second.direction = glm::normalize(second.direction + glm::vec3(-0.3f, 0.0f, -0.2f));
-  second.intensity *= 0.3f;
-  cornell.lights.push_back(second);
-  const engine::Scene checker = engine::makeBuiltinScene("checker");
-  gi::Settings settings = smallSettings();
-  settings.rsmSize = 32;
-  uint32_t width = 32, height = 20;
-  auto host = std::make_unique<Host>(ctx(), cornell, width, height);
-  engine::Camera camera = cornell.cameras.front();
-  host->setView(engine::cameraView(camera, width, height));
-  Twins t = makeTwins(settings, *host);
-  ASSERT_TRUE(t.on && t.off);
-  const engine::ImageRgba32f sky = engine::makeBuiltinEnvironment("sky", 64);
-  bool environment = false;
-  std::vector<uint32_t> kinds(8, 0);
-  uint32_t framesWithReuse = 0, framesKeepingEverything = 0, frames = 0;
-  for (uint32_t step = 0; step < 200 && !HasFatalFailure(); ++step) {
-    // Light, camera, geometry in place, setScene, settings, image size (new instances: rare,
-    // pipelines compile again), environment, nothing.
-    const uint32_t kind =
-        std::discrete_distribution<uint32_t>({15, 15, 12, 8, 20, 2, 10, 18})(random);
-    ++kinds[kind];
-    std::string what = "step " + std::to_string(step) + ": ";
-    engine::Scene scene = host->scene();
-    if (kind == 0) {  // a light moves, turns or dims
-      std::vector<engine::Light> lights = scene.lights;
-      engine::Light& l =
-          lights[std::uniform_int_distribution<size_t>(0, lights.size() - 1)(random)];
-      l.position += glm::vec3(uniform(-0.1f, 0.1f), uniform(-0.05f, 0.05f), uniform(-0.1f, 0.1f));
-      l.direction =
-          glm::normalize(l.direction + glm::vec3(uniform(-0.1f, 0.1f), 0.0f, uniform(-0.1f, 0.1f)));
-      l.intensity *= uniform(0.0f, 1.0f) < 0.15f ? 0.0f : uniform(0.5f, 2.0f);
-      if (l.intensity == 0.0f && uniform(0.0f, 1.0f) < 0.5f) l.intensity = 1.0f;
-      host->setLights(lights);
-      what += "light";
-    } else if (kind == 1) {  // the camera turns about the scene
-      const engine::Bounds b = scene.bounds();
-      const glm::vec3 centre = 0.5f * (b.min + b.max);
-      camera.cameraToWorld = glm::translate(glm::mat4(1.0f), centre) *
-                             glm::rotate(glm::mat4(1.0f), uniform(-0.2f, 0.2f), {0, 1, 0}) *
-                             glm::translate(glm::mat4(1.0f), -centre) * camera.cameraToWorld;
-      host->setView(engine::cameraView(camera, width, height));
-      what += "camera";
-    } else if (kind == 2) {  // vertices moved in place
-      host->shrinkInPlace(uniform(0.0f, 0.003f));
-      what += "geometry in place";
-    } else if (kind == 3) {  // a new scene (the same lights)
-      engine::Scene next = uniform(0.0f, 1.0f) < 0.5f ? cornell : checker;
-      next.lights = scene.lights;
-      host->setScene(next);
-      ASSERT_TRUE(t.on->setScene(host->geometry()));
-      ASSERT_TRUE(t.off->setScene(host->geometry()));
-      what += "setScene";
-    } else if (kind == 4) {  // per-frame settings
-      gi::Settings s = t.on->settings();
-      switch (std::uniform_int_distribution<int>(0, 9)(random)) {
-        case 0:
-          s.vsglCount = s.vsglCount == 48 ? 64 : 48;
-          break;
-        case 1:
-          s.kernelScale = s.kernelScale == 1.0f ? 2.0f : 1.0f;
-          break;
-        case 2:
-          s.glossy = !s.glossy;
-          break;
-        case 3:
-          s.pdf = s.pdf == gi::PdfKind::Brsm ? gi::PdfKind::Flux : gi::PdfKind::Brsm;
-          break;
-        case 4:
-          s.ismEnabled = !s.ismEnabled;
-          break;
-        // Not both: adaptive shading's queues are filled in the order atomics land, and culling
-        // decides per subgroup of queued texels, so that pair is not deterministic at all
-        // (docs/techniques/reuse.md, "Exactness").
-        case 5:
-          s.adaptive.enabled = !s.adaptive.enabled && !s.culling.enabled;
-          break;
-        case 6:
-          s.culling.enabled = !s.culling.enabled && !s.adaptive.enabled;
-          break;
-        case 7:
-          s.debugVsgl = s.debugVsgl < 0 ? 5 : -1;
-          break;
-        case 8:
-          s.method = s.method == gi::VsglMethod::FilteredImportanceSampling
-                         ? gi::VsglMethod::KmeansWorld
-                         : gi::VsglMethod::FilteredImportanceSampling;
-          s.kmeans.iterations = 2;
-          s.kmeans.temporal = false;  // it never keeps its VSGLs (the motion test has it)
-          break;
-        default:
-          s.brsm.fluxMix = s.brsm.fluxMix == 0.1f ? 0.5f : 0.1f;
-          break;
-      }
-      gi::Settings off = s;
-      off.reuse = false;
-      ASSERT_TRUE(t.on->setSettings(s));
-      ASSERT_TRUE(t.off->setSettings(off));
-      what += "settings";
-    } else if (kind == 5) {  // a new image size: a new G-buffer and new instances
-      width = width == 32 ? 24 : 32;
-      height = height == 20 ? 16 : 20;
-      engine::Scene same = host->scene();
-      host = std::make_unique<Host>(ctx(), same, width, height);
-      host->setView(engine::cameraView(camera, width, height));
-      framesWithReuse += t.framesWithReuse;
-      framesKeepingEverything += t.framesKeepingEverything;
-      frames += t.frames;
-      gi::Settings s = t.on->settings();
-      t = makeTwins(s, *host);
-      ASSERT_TRUE(t.on && t.off);
-      environment = false;
-      what += "image size";
-    } else if (kind == 6) {  // the environment set or removed
-      environment = !environment;
-      const gi::EnvironmentImage e{environment ? uint32_t(sky.width) : 0u, uint32_t(sky.height),
-                                   sky.pixels.data()};
-      ASSERT_TRUE(t.on->setEnvironment(e));
-      ASSERT_TRUE(t.off->setEnvironment(e));
-      what += environment ? "environment set" : "environment removed";
-    } else {  // nothing changes
-      what += "nothing";
+// A random sequence of host changes of every kind, seeded: `steps` of them, each followed by a
+// frame. With `compare`, both twins shade every frame and their outputs are compared (and the
+// counts of kept work returned); without, only the instance with reuse runs, for the soak.
+struct SequenceCounts {
+  uint32_t frames = 0, framesWithReuse = 0, framesKeepingEverything = 0;
+  std::vector<uint32_t> kinds = std::vector<uint32_t>(8, 0);
+};
+
+class RandomSequenceTest : public FrameReuseTest {
+ protected:
+  SequenceCounts runSequence(uint32_t steps, bool compare,
+                             const std::function<void(uint32_t step)>& before = nullptr) {
+    std::mt19937 random(26);
+    auto uniform = [&](float lo, float hi) {
+      return std::uniform_real_distribution<float>(lo, hi)(random);
+    };
+    // The Cornell box with a second spot, so that two RSM views share the VSGLs, each with its
+    // own pyramids (as a point light's six faces do; six cost too much time here).
+    engine::Scene cornell = engine::makeBuiltinScene("cornell");
+    engine::Light second = cornell.lights.front();
+    second.position += glm::vec3(0.4f, -0.3f, 0.2f);
+    second.direction = glm::normalize(second.direction + glm::vec3(-0.3f, 0.0f, -0.2f));
+    second.intensity *= 0.3f;
+    cornell.lights.push_back(second);
+    const engine::Scene checker = engine::makeBuiltinScene("checker");
+    gi::Settings settings = smallSettings();
+    settings.rsmSize = 32;
+    uint32_t width = 32, height = 20;
+    auto host = std::make_unique<Host>(ctx(), cornell, width, height);
+    engine::Camera camera = cornell.cameras.front();
+    host->setView(engine::cameraView(camera, width, height));
+    Twins t = makeTwins(settings, *host);
+    SequenceCounts counts;
+    if (!t.on || !t.off) {
+      ADD_FAILURE() << "no instances";
+      return counts;
     }
-    compareFrame(*host, t, what);
+    const engine::ImageRgba32f sky = engine::makeBuiltinEnvironment("sky", 64);
+    bool environment = false;
+    auto tally = [&] {
+      counts.framesWithReuse += t.framesWithReuse;
+      counts.framesKeepingEverything += t.framesKeepingEverything;
+      counts.frames += t.frames;
+    };
+    for (uint32_t step = 0; step < steps && !HasFatalFailure(); ++step) {
+      if (before) before(step);
+      // Light, camera, geometry in place, setScene, settings, image size (new instances:
+      // rare, pipelines compile again), environment, nothing.
+      const uint32_t kind =
+          std::discrete_distribution<uint32_t>({15, 15, 12, 8, 20, 2, 10, 18})(random);
+      ++counts.kinds[kind];
+      std::string what = "step " + std::to_string(step) + ": ";
+      engine::Scene scene = host->scene();
+      if (kind == 0) {  // a light moves, turns or dims
+        std::vector<engine::Light> lights = scene.lights;
+        engine::Light& l =
+            lights[std::uniform_int_distribution<size_t>(0, lights.size() - 1)(random)];
+        l.position += glm::vec3(uniform(-0.1f, 0.1f), uniform(-0.05f, 0.05f), uniform(-0.1f, 0.1f));
+        l.direction = glm::normalize(l.direction +
+                                     glm::vec3(uniform(-0.1f, 0.1f), 0.0f, uniform(-0.1f, 0.1f)));
+        l.intensity *= uniform(0.0f, 1.0f) < 0.15f ? 0.0f : uniform(0.5f, 2.0f);
+        if (l.intensity == 0.0f && uniform(0.0f, 1.0f) < 0.5f) l.intensity = 1.0f;
+        host->setLights(lights);
+        what += "light";
+      } else if (kind == 1) {  // the camera turns about the scene
+        const engine::Bounds b = scene.bounds();
+        const glm::vec3 centre = 0.5f * (b.min + b.max);
+        camera.cameraToWorld = glm::translate(glm::mat4(1.0f), centre) *
+                               glm::rotate(glm::mat4(1.0f), uniform(-0.2f, 0.2f), {0, 1, 0}) *
+                               glm::translate(glm::mat4(1.0f), -centre) * camera.cameraToWorld;
+        host->setView(engine::cameraView(camera, width, height));
+        what += "camera";
+      } else if (kind == 2) {  // vertices moved in place
+        host->shrinkInPlace(uniform(0.0f, 0.003f));
+        what += "geometry in place";
+      } else if (kind == 3) {  // a new scene (the same lights)
+        engine::Scene next = uniform(0.0f, 1.0f) < 0.5f ? cornell : checker;
+        next.lights = scene.lights;
+        host->setScene(next);
+        EXPECT_TRUE(t.on->setScene(host->geometry()));
+        EXPECT_TRUE(t.off->setScene(host->geometry()));
+        what += "setScene";
+      } else if (kind == 4) {  // per-frame settings
+        gi::Settings s = t.on->settings();
+        switch (std::uniform_int_distribution<int>(0, 9)(random)) {
+          case 0:
+            s.vsglCount = s.vsglCount == 48 ? 64 : 48;
+            break;
+          case 1:
+            s.kernelScale = s.kernelScale == 1.0f ? 2.0f : 1.0f;
+            break;
+          case 2:
+            s.glossy = !s.glossy;
+            break;
+          case 3:
+            s.pdf = s.pdf == gi::PdfKind::Brsm ? gi::PdfKind::Flux : gi::PdfKind::Brsm;
+            break;
+          case 4:
+            s.ismEnabled = !s.ismEnabled;
+            break;
+          // Not both: adaptive shading's queues are filled in the order atomics land, and culling
+          // decides per subgroup of queued texels, so that pair is not deterministic at all
+          // (docs/techniques/reuse.md, "Exactness").
+          case 5:
+            s.adaptive.enabled = !s.adaptive.enabled && !s.culling.enabled;
+            break;
+          case 6:
+            s.culling.enabled = !s.culling.enabled && !s.adaptive.enabled;
+            break;
+          case 7:
+            s.debugVsgl = s.debugVsgl < 0 ? 5 : -1;
+            break;
+          case 8:
+            s.method = s.method == gi::VsglMethod::FilteredImportanceSampling
+                           ? gi::VsglMethod::KmeansWorld
+                           : gi::VsglMethod::FilteredImportanceSampling;
+            s.kmeans.iterations = 2;
+            s.kmeans.temporal = false;  // it never keeps its VSGLs (the motion test has it)
+            break;
+          default:
+            s.brsm.fluxMix = s.brsm.fluxMix == 0.1f ? 0.5f : 0.1f;
+            break;
+        }
+        gi::Settings off = s;
+        off.reuse = false;
+        EXPECT_TRUE(t.on->setSettings(s));
+        EXPECT_TRUE(t.off->setSettings(off));
+        what += "settings";
+      } else if (kind == 5) {  // a new image size: a new G-buffer and new instances
+        width = width == 32 ? 24 : 32;
+        height = height == 20 ? 16 : 20;
+        engine::Scene same = host->scene();
+        host = std::make_unique<Host>(ctx(), same, width, height);
+        host->setView(engine::cameraView(camera, width, height));
+        tally();
+        gi::Settings s = t.on->settings();
+        t = makeTwins(s, *host);
+        if (!t.on || !t.off) {
+          ADD_FAILURE() << "no instances at " << width << "x" << height;
+          return counts;
+        }
+        environment = false;
+        what += "image size";
+      } else if (kind == 6) {  // the environment set or removed
+        environment = !environment;
+        const gi::EnvironmentImage e{environment ? uint32_t(sky.width) : 0u, uint32_t(sky.height),
+                                     sky.pixels.data()};
+        EXPECT_TRUE(t.on->setEnvironment(e));
+        EXPECT_TRUE(t.off->setEnvironment(e));
+        what += environment ? "environment set" : "environment removed";
+      } else {  // nothing changes
+        what += "nothing";
+      }
+      if (compare)
+        compareFrame(*host, t, what);
+      else
+        shadeFrame(*host, t);
+    }
+    tally();
+    return counts;
   }
-  framesWithReuse += t.framesWithReuse;
-  framesKeepingEverything += t.framesKeepingEverything;
-  frames += t.frames;
-  std::printf("%u frames: %u kept some work, %u kept everything; changes by kind:", frames,
-              framesWithReuse, framesKeepingEverything);
-  for (uint32_t k : kinds) std::printf(" %u", k);
+};
+
+// 200 random changes, the two instances compared in every frame.
+TEST_F(RandomSequenceTest, RandomChangesEqualNoReuse) {
+  const SequenceCounts c = runSequence(200, true);
+  std::printf("%u frames: %u kept some work, %u kept everything; changes by kind:", c.frames,
+              c.framesWithReuse, c.framesKeepingEverything);
+  for (uint32_t k : c.kinds) std::printf(" %u", k);
   std::printf("\n");
   // About 1 in 5 steps changes nothing: those frames (less the k-means ones) keep everything.
-  EXPECT_GT(framesKeepingEverything, 15u);
-  EXPECT_GT(framesWithReuse, frames / 3);
+  EXPECT_GT(c.framesKeepingEverything, 15u);
+  EXPECT_GT(c.framesWithReuse, c.frames / 3);
+}
+
+// The soak: the same random sequence twice. The first pass compiles every pipeline variant its
+// settings ask for (lavapipe keeps each compiled shader, tens of MB in all); the second makes
+// nothing new, so resident memory (host memory, and on a CPU device the device's too) must stay
+// within 1 % of where the first pass ended. The fixture fails on any validation message.
+// VSGL_SOAK_STEPS=2000 runs the long version (docs/techniques/reuse.md); CI runs 200.
+TEST_F(RandomSequenceTest, SoakKeepsMemoryFlat) {
+  const char* soak = std::getenv("VSGL_SOAK_STEPS");
+  const uint32_t steps = soak ? uint32_t(std::max(50l, std::strtol(soak, nullptr, 10))) : 200u;
+  runSequence(steps, false);
+  const size_t settled = residentBytes();
+  size_t largest = settled;
+  runSequence(steps, false, [&](uint32_t) { largest = std::max(largest, residentBytes()); });
+  largest = std::max(largest, residentBytes());
+  std::printf("resident memory: %.1f MB after the first %u steps, at most %.1f MB in the second\n",
+              double(settled) / 1e6, steps, double(largest) / 1e6);
+  EXPECT_LE(double(largest), 1.01 * double(settled));
 }
 
 // A host that does not number its G-buffer and geometry (the generations stay 0) gets every
