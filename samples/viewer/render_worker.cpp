@@ -211,6 +211,8 @@ FrameResult RenderWorker::State::render(const FrameRequest& r) {
       result.passes.push_back(pass);
     }
     result.plan = left->lastPlan().reasons;
+    const std::vector<std::string>& kept = left->lastPlan().reuse.reasons;
+    result.plan.insert(result.plan.end(), kept.begin(), kept.end());
     result.vsglCount = leftOut.vsglCount;
   }
   if (right)

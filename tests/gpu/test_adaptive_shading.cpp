@@ -196,7 +196,9 @@ TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
             ++skyTexels;
             EXPECT_FALSE(queued) << "sky texel " << x << "," << y << " queued";
             EXPECT_EQ(got.diffuse[i], glm::dvec3(0.0));
-            if (level == 0) EXPECT_EQ(gpu.levelMap[i], -1.0f) << "level map at " << x << "," << y;
+            if (level == 0) {
+              EXPECT_EQ(gpu.levelMap[i], -1.0f) << "level map at " << x << "," << y;
+            }
             continue;
           }
           if (queued != bool(twin.queued[i])) {

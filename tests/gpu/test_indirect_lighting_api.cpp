@@ -5,8 +5,8 @@
 // the test on any validation message). Only gi/include and the engine (the "host") are used.
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <cstring>
+#include <functional>
 #include <glm/gtc/packing.hpp>
 #include <limits>
 #include <random>
@@ -22,8 +22,8 @@
 #include "gpu_fixture.h"
 #include "light_validation.h"
 #include "passes/gbuffer_convert.h"
-#include "reference/gbuffer_convert_reference.h"
 #include "passes/rsm.h"
+#include "reference/gbuffer_convert_reference.h"
 #include "room_shell.h"
 
 namespace {
@@ -249,8 +249,8 @@ TEST_F(IndirectLightingApiTest, SetSceneNamesEachBadBuffer) {
        "SceneGeometry.vertexBytes: 64 bytes, " + std::to_string(good.vertexCount) +
            " vertices need " + std::to_string(good.vertexCount * 32)},
       {[](gi::SceneGeometry& g) { g.indexBytes -= 4; },
-       "SceneGeometry.indexBytes: " + std::to_string(good.indexBytes - 4) + " bytes, " +
-           triangles + " triangles need " + std::to_string(good.triangleCount * 12)},
+       "SceneGeometry.indexBytes: " + std::to_string(good.indexBytes - 4) + " bytes, " + triangles +
+           " triangles need " + std::to_string(good.triangleCount * 12)},
       {[](gi::SceneGeometry& g) { g.triangleMaterialBytes = 0; },
        "SceneGeometry.triangleMaterialBytes: 0 bytes, " + triangles + " triangles need " +
            std::to_string(good.triangleCount * 4)},
@@ -333,8 +333,8 @@ TEST_F(IndirectLightingApiTest, GBufferEncodingsShadeAsTheNativeOne) {
     float d;
     std::memcpy(&d, depthBytes.data() + 4 * i, 4);
     reversed[i] = 1.0f - d;
-    const glm::dvec2 ndc = (glm::dvec2(i % kWidth, i / kWidth) + 0.5) /
-                               glm::dvec2(kWidth, kHeight) * 2.0 - 1.0;
+    const glm::dvec2 ndc =
+        (glm::dvec2(i % kWidth, i / kWidth) + 0.5) / glm::dvec2(kWidth, kHeight) * 2.0 - 1.0;
     const glm::dvec4 v = inverseProj * glm::dvec4(ndc, d, 1.0);
     distance[i] = d >= 1.0f ? 0.0f : static_cast<float>(-v.z / v.w);
     int16_t e[2];
@@ -349,12 +349,12 @@ TEST_F(IndirectLightingApiTest, GBufferEncodingsShadeAsTheNativeOne) {
       halfNormals[4 * i + c] = glm::packHalf1x16(static_cast<float>(n[c]));
       byteNormals[4 * i + c] = static_cast<uint8_t>(std::lround((n[c] * 0.5 + 0.5) * 255.0));
     }
-    const glm::dvec2 e8 = d >= 1.0f ? glm::dvec2(0.0)
-                                    : gi::octahedralReference(
-                                          GBUFFER_NORMAL_WORLD_UNSIGNED,
-                                          glm::dvec4(byteNormals[4 * i] / 255.0,
-                                                     byteNormals[4 * i + 1] / 255.0,
-                                                     byteNormals[4 * i + 2] / 255.0, 0.0));
+    const glm::dvec2 e8 =
+        d >= 1.0f ? glm::dvec2(0.0)
+                  : gi::octahedralReference(
+                        GBUFFER_NORMAL_WORLD_UNSIGNED,
+                        glm::dvec4(byteNormals[4 * i] / 255.0, byteNormals[4 * i + 1] / 255.0,
+                                   byteNormals[4 * i + 2] / 255.0, 0.0));
     for (int c = 0; c < 2; ++c)
       byteOctahedral[2 * i + c] = static_cast<int16_t>(std::lround(e8[c] * 32767.0));
   }
@@ -388,12 +388,12 @@ TEST_F(IndirectLightingApiTest, GBufferEncodingsShadeAsTheNativeOne) {
     glm::mat4 proj;
     const engine::Image* baselineNormal;  // null: the fixture's own normals
   };
-  const Case cases[] = {{"reversed-Z, half normals", reversedDepth.get(), signedNormals.get(),
-                         gi::DepthEncoding::ReversedNdc, gi::NormalEncoding::WorldSigned,
-                         flip * view_.proj, nullptr},
-                        {"view distance, 8-bit normals", distanceDepth.get(), unsignedNormals.get(),
-                         gi::DepthEncoding::ViewDistance, gi::NormalEncoding::WorldUnsigned,
-                         view_.proj, byteBaseline.get()}};
+  const Case cases[] = {
+      {"reversed-Z, half normals", reversedDepth.get(), signedNormals.get(),
+       gi::DepthEncoding::ReversedNdc, gi::NormalEncoding::WorldSigned, flip * view_.proj, nullptr},
+      {"view distance, 8-bit normals", distanceDepth.get(), unsignedNormals.get(),
+       gi::DepthEncoding::ViewDistance, gi::NormalEncoding::WorldUnsigned, view_.proj,
+       byteBaseline.get()}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     gi::FrameInput base = input();
@@ -432,8 +432,8 @@ TEST_F(IndirectLightingApiTest, GBufferEncodingsShadeAsTheNativeOne) {
     for (const gi::PassTime& t : converted.lighting->lastFrameTimes()) {
       if (t.name != "gbuffer convert") continue;
       convertPass = true;
-      std::printf("%s: gbuffer convert %.3f ms (%.1f ns per pixel), %.2f %% of the frame\n",
-                  c.name, t.ms, 1e6 * t.ms / double(pixels), 100.0 * t.ms / frameMs);
+      std::printf("%s: gbuffer convert %.3f ms (%.1f ns per pixel), %.2f %% of the frame\n", c.name,
+                  t.ms, 1e6 * t.ms / double(pixels), 100.0 * t.ms / frameMs);
     }
     EXPECT_TRUE(convertPass);
   }
@@ -453,11 +453,12 @@ TEST_F(IndirectLightingApiTest, GBufferConvertMatchesItsTwin) {
   std::vector<float> normalValues(4 * w * h);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-  const float special[] = {0.0f, 1.0f, 0.5f, 1e-7f, 0.9999999f, -2.0f,
-                           std::numeric_limits<float>::infinity(), 37.5f};
+  const float special[] = {
+      0.0f, 1.0f, 0.5f, 1e-7f, 0.9999999f, -2.0f, std::numeric_limits<float>::infinity(), 37.5f};
   for (uint32_t i = 0; i < w * h; ++i) {
-    depth[i] = i < 8 ? special[i] : (i % 2 ? 0.25f + 0.7f * (unit(rng) * 0.5f + 0.5f)
-                                           : 0.1f + 20.0f * (unit(rng) * 0.5f + 0.5f));
+    depth[i] = i < 8 ? special[i]
+                     : (i % 2 ? 0.25f + 0.7f * (unit(rng) * 0.5f + 0.5f)
+                              : 0.1f + 20.0f * (unit(rng) * 0.5f + 0.5f));
     glm::vec3 n(unit(rng), unit(rng), unit(rng));
     if (i == 9) n = glm::vec3(0.0f);
     for (int c = 0; c < 3; ++c) {
@@ -479,8 +480,8 @@ TEST_F(IndirectLightingApiTest, GBufferConvertMatchesItsTwin) {
   const auto normalImage = image(VK_FORMAT_R16G16B16A16_SFLOAT, halfNormals.data(), 8 * w * h);
   const glm::mat4 proj = view_.proj;
   gi::GBufferConvert convert(ctx(), w, h);
-  for (uint32_t encoding : {GBUFFER_DEPTH_NDC, GBUFFER_DEPTH_REVERSED_NDC,
-                            GBUFFER_DEPTH_VIEW_DISTANCE}) {
+  for (uint32_t encoding :
+       {GBUFFER_DEPTH_NDC, GBUFFER_DEPTH_REVERSED_NDC, GBUFFER_DEPTH_VIEW_DISTANCE}) {
     for (uint32_t normals : {GBUFFER_NORMAL_WORLD_SIGNED, GBUFFER_NORMAL_WORLD_UNSIGNED}) {
       SCOPED_TRACE("depth " + std::to_string(encoding) + ", normals " + std::to_string(normals));
       gpu::GBufferConvertPush push{};
@@ -536,8 +537,7 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   settings = smallSettings();
   settings.brsm.importanceCount = gi::kMaxImportanceCount + 1;
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
-  EXPECT_EQ(status.message,
-            "Settings.brsm: BRSM importanceCount 16385 is outside [1, 16384]");
+  EXPECT_EQ(status.message, "Settings.brsm: BRSM importanceCount 16385 is outside [1, 16384]");
   settings = smallSettings();
   settings.adaptive.coarsestLevel = 4;
   EXPECT_FALSE(gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status));
@@ -679,11 +679,17 @@ TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
         method == gi::VsglMethod::KmeansImage || method == gi::VsglMethod::KmeansWorld;
     for (uint32_t f = 0, first = 0; f < 6; ++f) {
       EXPECT_EQ(ranges[f].x, first) << "face " << f;
-      if (kmeans) EXPECT_EQ(ranges[f].y, f < 2 ? 11u : 10u) << "face " << f;
+      if (kmeans) {
+        EXPECT_EQ(ranges[f].y, f < 2 ? 11u : 10u) << "face " << f;
+      }
       first += ranges[f].y;
-      if (f == 5) EXPECT_EQ(first, 62u);
+      if (f == 5) {
+        EXPECT_EQ(first, 62u);
+      }
     }
-    if (!kmeans) EXPECT_LT(ranges[4].y, ranges[5].y) << "the open front's face";
+    if (!kmeans) {
+      EXPECT_LT(ranges[4].y, ranges[5].y) << "the open front's face";
+    }
     auto inFrustum = [](const gi::RsmView& face, const gpu::VsglLobe& lobe) {
       const glm::dvec4 clip =
           glm::dmat4(face.raster.matrix) *
@@ -700,8 +706,9 @@ TEST_F(IndirectLightingApiTest, PointLightSharesItsVsglsAmongTheCubeFaces) {
           ++powered;
           EXPECT_TRUE(inFrustum(faces[f], v.diffuse)) << "record " << i << " of face " << f;
         }
-        if (v.specular.power.a > 0.0f)
+        if (v.specular.power.a > 0.0f) {
           EXPECT_TRUE(inFrustum(faces[f], v.specular)) << "record " << i << " of face " << f;
+        }
       }
       EXPECT_GT(powered, 0u) << "face " << f;
     }
@@ -1193,7 +1200,9 @@ TEST_F(IndirectLightingApiTest, CullingStaysWithinItsBudget) {
     for (uint32_t level = 0; level < 4; ++level) {
       EXPECT_EQ(counts.vsglTests[level] % smallSettings().vsglCount, 0u);
       EXPECT_LE(counts.vsglsSkipped[level], counts.vsglTests[level]);
-      if (!adaptive && level > 0) EXPECT_EQ(counts.vsglTests[level], 0u);
+      if (!adaptive && level > 0) {
+        EXPECT_EQ(counts.vsglTests[level], 0u);
+      }
       tests += counts.vsglTests[level];
       skipped += counts.vsglsSkipped[level];
     }

@@ -205,7 +205,8 @@ TEST_F(IsmTest, PointsMatchTheReference) {
 TEST_F(IsmTest, CutOutPointsMatchTheReference) {
   Scene scene = scene_;
   for (size_t i = 0; i < scene.positions.size(); ++i)
-    scene.uvs[i] = glm::vec2(scene.positions[i].x + scene.positions[i].y, scene.positions[i].z) * 0.9f;
+    scene.uvs[i] =
+        glm::vec2(scene.positions[i].x + scene.positions[i].y, scene.positions[i].z) * 0.9f;
   engine::Texture texture{"random alpha", 8, 8, {}};
   uint32_t state = 12345;
   for (int i = 0; i < 64; ++i) {
@@ -230,7 +231,9 @@ TEST_F(IsmTest, CutOutPointsMatchTheReference) {
   for (size_t i = 0; i < gpu.size(); ++i) {
     const bool gpuCut = gpu[i].triangle == ISM_NO_TRIANGLE;
     cut += gpuCut;
-    if (gpuCut) EXPECT_EQ(gpu[i].bary, 0u) << "point " << i;
+    if (gpuCut) {
+      EXPECT_EQ(gpu[i].bary, 0u) << "point " << i;
+    }
     differing += gpuCut != (ref[i].triangle == ISM_NO_TRIANGLE);
   }
   std::printf("cut-outs: %zu of %zu points cut, %zu decided otherwise by the twin\n", cut,
@@ -244,9 +247,11 @@ TEST_F(IsmTest, CutOutPointsMatchTheReference) {
   size_t cutTexels = 0;
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x)
-      cutTexels += !cutouts.opaque(0, glm::vec2((x + 0.5f) / 8.0f, (y + 0.5f) / 8.0f));
+      cutTexels +=
+          !cutouts.opaque(0, glm::vec2((float(x) + 0.5f) / 8.0f, (float(y) + 0.5f) / 8.0f));
   EXPECT_EQ(cutTexels, 34u);
-  EXPECT_NEAR(static_cast<double>(cut) / static_cast<double>(gpu.size()), cutTexels / 64.0, 0.03);
+  EXPECT_NEAR(static_cast<double>(cut) / static_cast<double>(gpu.size()),
+              static_cast<double>(cutTexels) / 64.0, 0.03);
 }
 
 // The splat against the twin on the GPU's own points, then pull-push against the twin on the

@@ -276,7 +276,7 @@ TEST_F(Rasterizer, AlphaCutoutsMatchTheTwinAndCutTheirShare) {
   size_t passing = 0;
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x)
-      passing += cutouts.opaque(0, glm::vec2((x + 0.5f) / 16.0f, (y + 0.5f) / 16.0f));
+      passing += cutouts.opaque(0, glm::vec2((float(x) + 0.5f) / 16.0f, (float(y) + 0.5f) / 16.0f));
   const double share = static_cast<double>(passing) / 256.0;
   ASSERT_GT(groundPixels, size_t{w} * h / 4);
   // About 3 000 pixels over many texels: a binomial spread of ~0.01; 0.06 leaves room for the
@@ -301,12 +301,15 @@ TEST_F(Rasterizer, LargeTrianglesInALargeViewMatchTheTwin) {
   for (uint32_t i : floor.indices) scene.indices.push_back(base + i);
   scene.triangleMaterial = {0, 0, 1, 1};
   scene.materials.push_back({});
-  scene.textures.push_back({"checker", 2, 2, {255, 255, 255, 255, 255, 255, 255, 0,
-                                              255, 255, 255, 0, 255, 255, 255, 255}});
+  scene.textures.push_back(
+      {"checker",
+       2,
+       2,
+       {255, 255, 255, 255, 255, 255, 255, 0, 255, 255, 255, 0, 255, 255, 255, 255}});
   scene.materials[0].baseColorTexture = 0;
-  const glm::mat4 vp = engine::perspectiveVulkan(1.0f, 1.0f, 0.05f, 10.0f) *
-                       engine::lookAlong(glm::vec3(0, 3, 0), glm::vec3(0, -1, 0),
-                                         glm::vec3(0, 0, -1));
+  const glm::mat4 vp =
+      engine::perspectiveVulkan(1.0f, 1.0f, 0.05f, 10.0f) *
+      engine::lookAlong(glm::vec3(0, 3, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, -1));
   for (const float cutoff : {0.0f, 0.5f}) {
     SCOPED_TRACE(cutoff > 0.0f ? "alpha-tested" : "opaque");
     scene.materials[0].alphaCutoff = cutoff;

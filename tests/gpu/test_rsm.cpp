@@ -10,8 +10,8 @@
 #include "engine/gltf.h"
 #include "gpu_fixture.h"
 #include "passes/rsm.h"
-#include "rsm_rig.h"
 #include "reference/rsm_reference.h"
+#include "rsm_rig.h"
 
 namespace {
 
@@ -131,8 +131,7 @@ TEST_F(Rsm, AlphaMaskCutsTheLightsView) {
   const uint32_t size = 128;
   for (const bool cut : {true, false}) {
     SCOPED_TRACE(cut ? "MASK" : "OPAQUE");
-    engine::Scene scene =
-        engine::loadGltf(std::string(VSGL_TEST_DATA) + "/gltf/alpha_mask.gltf");
+    engine::Scene scene = engine::loadGltf(std::string(VSGL_TEST_DATA) + "/gltf/alpha_mask.gltf");
     if (!cut) scene.materials[1].alphaCutoff = 0.0f;
     testing_gpu::RsmRig rig(ctx(), scene, size);
     const engine::GBufferData g = engine::readbackGBuffer(ctx(), rig.rsm->surface());
@@ -261,7 +260,9 @@ TEST_F(Rsm, RangeWindowScalesTheFluxAsTheDirectLight) {
                 1e-5 * ref[i].specularFlux[k] + 5e-5 * full[i].specularFlux[k] + floor)
           << "texel " << i << " specular " << k;
     }
-    if (window == 0.0) EXPECT_EQ(gpu.position[i].w, 0.0f) << "texel " << i << " past the range";
+    if (window == 0.0) {
+      EXPECT_EQ(gpu.position[i].w, 0.0f) << "texel " << i << " past the range";
+    }
   }
   EXPECT_GT(cut, ref.size() / 20) << "some of the room must lie past the range";
   EXPECT_GT(windowed, ref.size() / 20) << "some of it inside the window's fall-off";

@@ -34,7 +34,7 @@ TEST_F(VsglAllocationTest, MatchesItsTwin) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (int trial = 0; trial < 40; ++trial) {
-    const uint32_t views = 1 + rng() % VSGL_MAX_VIEWS;
+    const auto views = static_cast<uint32_t>(1 + rng() % VSGL_MAX_VIEWS);
     const uint32_t count = std::vector<uint32_t>{1, 7, 62, 512, 4096}[trial % 5];
     const float fluxMix = trial % 2 ? 1.0f : 0.1f;
     std::vector<glm::vec2> weights(views);

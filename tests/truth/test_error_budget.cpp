@@ -100,7 +100,8 @@ TEST(ErrorBudget, NumericSgStageMatchesTheAnalyticTwin) {
   const glm::vec3 lo = b.min, size = b.max - b.min;
   for (int i = 0; i < 6; ++i) {
     gpu::Vsgl v{};
-    const glm::vec3 floor = lo + size * glm::vec3(0.2f + 0.12f * i, 0.0005f, 0.3f + 0.07f * i);
+    const glm::vec3 floor =
+        lo + size * glm::vec3(0.2f + 0.12f * float(i), 0.0005f, 0.3f + 0.07f * float(i));
     v.diffuse = testing_gpu::vsglLobe(floor, 0.01f, {0, 1, 0}, 2.2925f, glm::vec3(2.0f));
     v.specular = testing_gpu::vsglLobe(floor, 0.01f, {0.3f, 1.0f, 0.2f}, 20.0f, glm::vec3(0.3f));
     vsgls.push_back(v);

@@ -125,8 +125,8 @@ TEST_P(VsglBoundModels, NoReceiverGetsMoreThanTheBound) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Emitters, VsglBoundModels, testing::Bool(),
-                         [](const testing::TestParamInfo<bool>& info) {
-                           return info.param ? "Planar" : "Sg";
+                         [](const testing::TestParamInfo<bool>& param) {
+                           return param.param ? "Planar" : "Sg";
                          });
 
 // The bound sees what culls: the same lobe turned away from a tile, or moved 20 times farther,
