@@ -25,7 +25,9 @@ engine::Scene loadScene(const std::string& name) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension != ".gltf" && extension != ".glb")
     throw engine::Error("--scene: '" + name + "' is neither a built-in scene (" +
-                        engine::builtinSceneList() + ") nor a .gltf/.glb file");
+                        engine::builtinSceneList() +
+                        ", or generated: sphere-room:N, sphere-room-outside:N) nor a .gltf/.glb "
+                        "file");
   engine::Scene scene = engine::loadGltf(name);
   for (const std::string& warning : scene.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
