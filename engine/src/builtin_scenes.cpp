@@ -15,6 +15,10 @@ namespace {
 class ProceduralScene {
  public:
   explicit ProceduralScene(const std::string& name) { scene_.source = "builtin:" + name; }
+  // More geometry, materials and lights added to `base`.
+  ProceduralScene(Scene base, const std::string& name) : scene_(std::move(base)) {
+    scene_.source = "builtin:" + name;
+  }
 
   uint32_t addMaterial(const std::string& name, glm::vec3 baseColor, float roughness,
                        float metallic) {
@@ -424,23 +428,12 @@ Scene makeLounge() {
 // cone, or (`outside`) a tenth of them there and the rest in a sphere above the ceiling,
 // outside the spot's cone and the camera's view.
 Scene makeSphereRoom(uint32_t triangles, bool outside, const std::string& name) {
-  Scene room = makeCornell();
-  ProceduralScene s(name);
+  ProceduralScene s(makeCornell(), name);
   const uint32_t white = s.addMaterial("sphere white", glm::vec3(0.73f), 0.9f, 0.0f);
   const uint32_t inside = outside ? triangles / 10 : triangles;
   s.addSphere({-1.15f, 0.3f, -0.45f}, 0.3f, inside, white);
   if (outside) s.addSphere({0.0f, 3.2f, 1.2f}, 0.6f, triangles - inside, white);
-  Scene spheres = s.take();
-  const auto firstVertex = static_cast<uint32_t>(room.positions.size());
-  const auto firstMaterial = static_cast<uint32_t>(room.materials.size());
-  room.positions.insert(room.positions.end(), spheres.positions.begin(), spheres.positions.end());
-  room.normals.insert(room.normals.end(), spheres.normals.begin(), spheres.normals.end());
-  room.uvs.insert(room.uvs.end(), spheres.uvs.begin(), spheres.uvs.end());
-  for (uint32_t index : spheres.indices) room.indices.push_back(firstVertex + index);
-  for (uint32_t m : spheres.triangleMaterial) room.triangleMaterial.push_back(firstMaterial + m);
-  room.materials.insert(room.materials.end(), spheres.materials.begin(), spheres.materials.end());
-  room.source = "builtin:" + name;
-  return room;
+  return s.take();
 }
 
 }  // namespace

@@ -499,7 +499,7 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
   if (brsm)
     vsglIn.importance = {cameraIn, settings.brsm.importanceCount, settings.rule,
                          plan.specularLobes};
-  plan.reuse.vsgls = last.vsgls == vsglIn;
+  plan.reuse.vsgls = !evolving && last.vsgls == vsglIn;
   if (plan.reuse.vsgls) {  // and with them all they are made from
     plan.reuse.importance = brsm;
     plan.reuse.lightViews = viewCount;
@@ -551,10 +551,7 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
                                {settings.vsglCount, settings.kernelScale, generation},
                                allocation.ranges(), v, &profiler);
     }
-    if (evolving)
-      last.vsgls.reset();
-    else
-      last.vsgls = vsglIn;
+    last.vsgls = vsglIn;
   }
   const engine::Buffer* vsgls = &vsglBuffer();
   // The maps are built for the shading's visibility or for the debug view, whichever asks.

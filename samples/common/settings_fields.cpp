@@ -20,7 +20,7 @@ using Kind = SettingField::Kind;
 // A field's value as a double and back: every field is a bool, an enum over uint32_t, a
 // uint32_t, an int32_t or a float, all exact in a double.
 template <class T>
-double toDouble(T value) {
+double asDouble(T value) {
   if constexpr (std::is_enum_v<T>)
     return static_cast<double>(static_cast<std::underlying_type_t<T>>(value));
   else
@@ -42,7 +42,7 @@ struct Access {
   void (*set)(gi::Settings&, double);
 };
 #define SETTING_ACCESS(path)                                      \
-  (Access{[](const gi::Settings& s) { return toDouble(s.path); }, \
+  (Access{[](const gi::Settings& s) { return asDouble(s.path); }, \
           [](gi::Settings& s, double v) { s.path = fromDouble<decltype(s.path)>(v); }})
 
 // brsm.fluxMix's range is (0, 1]: the smallest positive float stands for the open end, so the

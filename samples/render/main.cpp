@@ -146,7 +146,7 @@ int run(const render::Options& o) {
   uint32_t shaded = o.width * o.height;
   if (counts.adaptive)
     shaded = counts.shaded[0] + counts.shaded[1] + counts.shaded[2] + counts.shaded[3];
-  passTimes.print(o.frames, indirect ? o.gi.vsglCount : 0, shaded);
+  passTimes.print(indirect ? o.gi.vsglCount : 0, shaded);
   // The effect planner's decisions for the last frame: what it left out, and why.
   if (indirect) {
     for (const std::string& reason : indirect->lastPlan().reasons)

@@ -11,11 +11,11 @@ void PassTable::add(const std::string& name, double ms, uint32_t dispatches) {
   runs_[name].push_back({frames_ - 1, ms, dispatches});
 }
 
-void PassTable::print(uint32_t frames, uint32_t vsglCount, uint32_t shadedPixels) const {
+void PassTable::print(uint32_t vsglCount, uint32_t shadedPixels) const {
   std::printf(
       "GPU time per pass, median of %u frames (ms; 0 in a frame it did not run), and compute "
       "dispatches per frame (median):\n",
-      frames);
+      frames_);
   for (const auto& name : order_) {
     std::vector<double> times(frames_, 0.0), dispatches(frames_, 0.0);
     for (const Run& run : runs_.at(name)) {

@@ -18,7 +18,7 @@ class PassTable {
   // One frame's time of a pass and the compute dispatches it recorded.
   void add(const std::string& name, double ms, uint32_t dispatches);
   // With the VSGL count and pixel count, the shading pass is also given per pixel-VSGL pair.
-  void print(uint32_t frames, uint32_t vsglCount, uint32_t shadedPixels) const;
+  void print(uint32_t vsglCount, uint32_t shadedPixels) const;
 
  private:
   // A pass's times and dispatches in the measured frames it ran in, each frame's index first.

@@ -69,7 +69,7 @@ struct FrameResult {
   // screenshot or a recorded path writes (the window's state may have moved on).
   FrameRequest request;
   std::vector<gi::PassTime> passes;  // the host's, then the module's ("gi ...", "gi right ...")
-  std::vector<std::string> plan;  // the effect planner's decisions, then what reuse kept
+  std::vector<std::string> plan;     // the effect planner's decisions, then what reuse kept
   uint32_t vsglCount = 0;
   int32_t visibilityVsgl = -1;  // the VSGL whose visibility the Visibility view shows, or -1
   std::string note;             // one line about the frame (e.g. no light bounces)

@@ -144,16 +144,7 @@ FrameResult RenderWorker::State::render(const FrameRequest& r) {
     left.reset();
     right.reset();
   }
-  const bool lightsChanged =
-      !host || scene.lights.size() != r.lights.size() ||
-      !std::equal(r.lights.begin(), r.lights.end(), scene.lights.begin(),
-                  [](const engine::Light& a, const engine::Light& b) {
-                    return a.type == b.type && a.position == b.position &&
-                           a.direction == b.direction && a.color == b.color &&
-                           a.intensity == b.intensity && a.range == b.range &&
-                           a.innerConeAngle == b.innerConeAngle &&
-                           a.outerConeAngle == b.outerConeAngle;
-                  });
+  const bool lightsChanged = !host || scene.lights != r.lights;
   scene.lights = r.lights;
   if (!host || host->width() != r.width || host->height() != r.height) {
     left.reset();

@@ -92,6 +92,7 @@ struct Light {
   float range = 0.0f;                      // metres; 0 = infinite (KHR_lights_punctual)
   float innerConeAngle = 0.0f;             // radians, spot only, in [0, outer)
   float outerConeAngle = 0.7853982f;       // radians, spot only, in (0, pi/2]
+  bool operator==(const Light&) const = default;
 };
 
 // KHR_lights_punctual's spot falloff as scale and offset: falloff(cos) = saturate(cos * x + y)^2,
