@@ -29,23 +29,6 @@ struct Rasterization {
   Cutout cutout;
 };
 
-// Mirrors toClip(): p - origin, then ((c0 * x + c1 * y) + c2 * z) + c3, each difference,
-// product and sum rounded to float.
-glm::vec4 toClip(const RasterTransform& t, const glm::vec3& world) {
-  const glm::mat4& m = t.matrix;
-  const glm::vec3 p(world.x - t.origin.x, world.y - t.origin.y, world.z - t.origin.z);
-  glm::vec4 r;
-  for (int k = 0; k < 4; ++k) {
-    float a = m[0][k] * p.x;
-    float b = m[1][k] * p.y;
-    float c = m[2][k] * p.z;
-    float s = a + b;
-    s = s + c;
-    r[k] = s + m[3][k];
-  }
-  return r;
-}
-
 float planeDistance(const glm::vec4& v, int k) {
   float g = static_cast<float>(RASTER_GUARD_BAND) * v.w;
   switch (k) {
@@ -109,7 +92,7 @@ Cutout stageCutout(const Scene& scene, const AlphaCutouts& cutouts, const Raster
   glm::vec3 h[3];
   for (int i = 0; i < 3; ++i) {
     const uint32_t v = scene.indices[3 * size_t{tri} + i];
-    const glm::vec4 clip = toClip(t, scene.positions[v]);
+    const glm::vec4 clip = rasterClip(t, scene.positions[v]);
     const float halfWidth = 0.5f * static_cast<float>(width);
     const float halfHeight = 0.5f * static_cast<float>(height);
     float sx = clip.x + clip.w;
@@ -210,7 +193,7 @@ ReferenceRaster rasterizeReference(const Scene& scene, const RasterTransform& tr
     c.triangleId = tri;
     glm::vec4 v[3];
     for (int i = 0; i < 3; ++i)
-      v[i] = toClip(transform, scene.positions[scene.indices[3 * tri + i]]);
+      v[i] = rasterClip(transform, scene.positions[scene.indices[3 * tri + i]]);
     bool rejected = false;
     for (int axis = 0; axis < 2; ++axis) {
       rejected = rejected || (v[0][axis] > v[0].w && v[1][axis] > v[1].w && v[2][axis] > v[2].w);

@@ -1,7 +1,11 @@
 #include "engine/rasterizer.h"
 
+#include <algorithm>
+
 #include "engine/commands.h"
+#include "engine/raster_clusters.h"
 #include "shared/raster.h"
+#include "spirv/raster_cull.h"
 #include "spirv/raster_setup.h"
 #include "spirv/raster_triangles.h"
 
@@ -20,15 +24,25 @@ ComputeProgram coverageProgram(Context& ctx, uint32_t alphaTest) {
                         sizeof(gpu::RasterTrianglesPush), specialization);
 }
 
+// raster_setup.comp's two passes: setup (kClipPass = 0) or the clipping of what it listed.
+ComputeProgram setupProgram(Context& ctx, uint32_t clipPass) {
+  const uint32_t specialization[] = {clipPass};
+  const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return ComputeProgram(ctx, clipPass ? "raster_setup (clip)" : "raster_setup", kRasterSetupSpv,
+                        {storage, storage, storage, storage, storage, storage, storage},
+                        sizeof(gpu::RasterSetupPush), specialization);
+}
+
 }  // namespace
 
 Rasterizer::Rasterizer(Context& ctx)
     : ctx_(ctx),
-      setup_(ctx, "raster_setup", kRasterSetupSpv,
-             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-              VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-              VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             sizeof(gpu::RasterSetupPush)),
+      cull_(ctx, "raster_cull", kRasterCullSpv,
+            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+             VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            sizeof(gpu::RasterSetupPush)),
+      setup_(setupProgram(ctx, 0)),
+      clip_(setupProgram(ctx, 1)),
       coverage_(coverageProgram(ctx, 0)),
       alphaCoverage_(coverageProgram(ctx, 1)),
       counters_(ctx, sizeof(gpu::RasterCounters),
@@ -45,6 +59,11 @@ void Rasterizer::reserve(uint32_t triangleCount) {
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
   groupAreas_ = Buffer(ctx_, VkDeviceSize{groupCount(needed, RASTER_GROUP_SIZE)} * sizeof(uint32_t),
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
+  clipList_ = Buffer(ctx_, VkDeviceSize{std::max(triangleCount, 1u)} * sizeof(uint32_t),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
+  clusterList_ =
+      Buffer(ctx_, VkDeviceSize{std::max(clusterCount(triangleCount), 1u)} * sizeof(uint32_t),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
   capacity_ = needed;
 }
 
@@ -65,6 +84,21 @@ RasterTransform rasterTransform(const glm::mat4& viewProj) {
   return {glm::mat4(relative), glm::vec3(origin)};
 }
 
+glm::vec4 rasterClip(const RasterTransform& t, const glm::vec3& world) {
+  const glm::mat4& m = t.matrix;
+  const glm::vec3 p(world.x - t.origin.x, world.y - t.origin.y, world.z - t.origin.z);
+  glm::vec4 r;
+  for (int k = 0; k < 4; ++k) {
+    float a = m[0][k] * p.x;
+    float b = m[1][k] * p.y;
+    float c = m[2][k] * p.z;
+    float s = a + b;
+    s = s + c;
+    r[k] = s + m[3][k];
+  }
+  return r;
+}
+
 void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene, const glm::mat4& viewProj,
                         const RasterTarget& target, GpuProfiler* profiler) {
   record(cmd, scene, rasterTransform(viewProj), target, profiler);
@@ -83,7 +117,7 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
 
   {
     ProfileScope scope(profiler, cmd, "raster setup");
-    gpu::RasterCounters zero{0, 0, 1, 1, 0, 0, 0, 0};
+    gpu::RasterCounters zero{0, 0, 1, 1, 0, 0, 1, 1, 0, 1, 1, 0};
     updateBuffer(cmd, counters_, &zero, sizeof(zero));
     fillBuffer(cmd, *target.visibility, 0xFFFFFFFFu, target.offset, visBytes);
     fillBuffer(cmd, groupAreas_, 0u);
@@ -93,14 +127,24 @@ void Rasterizer::record(VkCommandBuffer cmd, const SceneGpu& scene,
                               scene.triangleCount,
                               capacity_,
                               scene.vertexCount,
-                              0,
+                              cullClusters_ ? 1u : 0u,
                               0,
                               0};
-    setup_.dispatch(
-        cmd,
-        {Binding::storage(scene.vertices), Binding::storage(scene.indices),
-         Binding::storage(triangles_), Binding::storage(counters_), Binding::storage(groupAreas_)},
-        push, groupCount(scene.triangleCount, RASTER_GROUP_SIZE));
+    cull_.dispatch(cmd,
+                   {Binding::storage(scene.clusters), Binding::storage(clusterList_),
+                    Binding::storage(counters_)},
+                   push, groupCount(clusterCount(scene.triangleCount), RASTER_GROUP_SIZE));
+    computeBarrier(cmd);
+    const std::initializer_list<Binding> bindings = {
+        Binding::storage(scene.vertices), Binding::storage(scene.indices),
+        Binding::storage(triangles_),     Binding::storage(counters_),
+        Binding::storage(groupAreas_),    Binding::storage(clipList_),
+        Binding::storage(clusterList_)};
+    setup_.dispatchIndirect(cmd, bindings, push, counters_,
+                            offsetof(gpu::RasterCounters, clusterCount));
+    computeBarrier(cmd);
+    clip_.dispatchIndirect(cmd, bindings, push, counters_,
+                           offsetof(gpu::RasterCounters, clipGroupsX));
     computeBarrier(cmd);
   }
   {

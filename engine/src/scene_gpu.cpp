@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 
+#include "engine/raster_clusters.h"
 #include "engine/tonemap.h"
 #include "shared/scene_data.h"
 
@@ -169,6 +170,7 @@ SceneGpu uploadScene(Context& ctx, const Scene& scene) {
 
   gpu.vertices = makeStorage(ctx, vertices);
   gpu.indices = makeStorage(ctx, scene.indices);
+  gpu.clusters = makeStorage(ctx, clusterBounds(scene));
   gpu.triangleMaterials = makeStorage(ctx, scene.triangleMaterial);
   gpu.materials = makeStorage(ctx, materials);
   gpu.baseColorTextures = makeTextureArray(ctx, scene, baseLayers, true, size);

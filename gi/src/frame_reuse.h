@@ -106,6 +106,7 @@ struct EnvironmentInputs {
 
 // Each stage's inputs when it last ran (none: it never ran, or its outputs are not kept).
 struct LastInputs {
+  std::optional<SceneInputs> clusterBounds;  // the rasterizer's cluster boxes
   std::optional<CameraInputs> converted;
   std::optional<ImportanceInputs> importance;
   std::vector<std::optional<LightViewInputs>> views;  // by attribute pyramid

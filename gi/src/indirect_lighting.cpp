@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "engine/commands.h"
+#include "engine/raster_clusters.h"
 #include "engine/rasterizer.h"
 #include "frame_reuse.h"
 #include "light_validation.h"
@@ -136,6 +137,7 @@ struct IndirectLighting::Impl {
         width(w),
         height(h),
         rasterizer(ctx),
+        clusterBounds(ctx),
         resolve(ctx),
         mips(ctx),
         rsm(ctx, s.rsmSize),
@@ -194,6 +196,7 @@ struct IndirectLighting::Impl {
   float maxSpecular = 1.0f;     // SceneGeometry::maxSpecular
   FramePlan plan;               // of the last recorded frame
   engine::Rasterizer rasterizer;
+  engine::ClusterBounds clusterBounds;  // the boxes the RSM's raster culls with
   engine::GBufferResolve resolve;
   MipPyramid mips;
   ReflectiveShadowMap rsm;
@@ -525,6 +528,10 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
       if (ownPyramids && kept == views[v].inputs) {
         ++plan.reuse.lightViews;
       } else {
+        if (last.clusterBounds != sceneIn) {  // the geometry changed, or may have
+          clusterBounds.record(cmd, *scene, &profiler);
+          last.clusterBounds = sceneIn;
+        }
         rsm.record(cmd, *scene, rasterizer, resolve, view, views[v].light, &profiler);
         pyramids.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler, plan.specularLobes);
         kept = views[v].inputs;
@@ -769,6 +776,7 @@ Status IndirectLighting::setScene(const SceneGeometry& s) {
   scene.dataTextures = engine::Image::borrow(VK_NULL_HANDLE, s.dataTextures, array,
                                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   scene.sampler = engine::Sampler::borrow(s.sampler);
+  scene.clusters = engine::createClusterBuffer(impl_->ctx, s.triangleCount);
   scene.triangleCount = s.triangleCount;
   scene.vertexCount = s.vertexCount;
   scene.materialCount = s.materialCount;

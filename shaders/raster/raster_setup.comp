@@ -1,7 +1,11 @@
 #version 460
-// Triangle setup of the compute rasterizer, one thread per scene triangle: transform to clip
-// space, reject triangles outside the frustum, clip to the near plane and the guard band,
-// snap to fixed point and append the fan triangles with a non-empty pixel box.
+// Triangle setup of the compute rasterizer, one work group per cluster that raster_cull kept and
+// one thread per triangle in it: transform to clip space, reject triangles outside the frustum,
+// snap to fixed point and append the triangles with a non-empty pixel box. The few that cross
+// the near plane or the guard band are listed instead and clipped by a second, indirect
+// dispatch of this shader (kClipPass): lavapipe (llvmpipe) pays for the clipper's polygon
+// arrays in every invocation of a pipeline that declares them, reached or not, which made
+// setup five times slower (docs/performance.md).
 // The CPU twin is engine/src/raster_reference.cpp; both must round identically, hence
 // `precise` (no FMA contraction) and the explicit evaluation order of every product.
 #extension GL_GOOGLE_include_directive : require
@@ -12,6 +16,8 @@
 #include "common/raster_clip.glsl"
 
 layout(local_size_x = RASTER_GROUP_SIZE) in;
+// 0: the triangles of the kept clusters (setup); 1: those setup listed for clipping.
+layout(constant_id = 0) const uint kClipPass = 0;
 
 layout(std430, binding = 0) readonly buffer Vertices { SceneVertex vertices[]; };
 layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
@@ -20,6 +26,10 @@ layout(std430, binding = 3) buffer Counters { RasterCounters counters; };
 // Pixel-box area of each group of RASTER_GROUP_SIZE list entries (zeroed before the pass): the
 // coverage pass's work groups per group of triangles (RASTER_CHUNK_PIXELS).
 layout(std430, binding = 4) buffer GroupAreas { uint groupAreas[]; };
+// The triangles that need clipping (RasterCounters::clipCount of them).
+layout(std430, binding = 5) buffer ClipList { uint clipList[]; };
+// The clusters raster_cull kept (RasterCounters::clusterCount of them): this pass's work groups.
+layout(std430, binding = 6) readonly buffer ClusterList { uint clusterList[]; };
 layout(push_constant) uniform Push { RasterSetupPush pc; };
 
 vec4 toClip(vec3 world) { return rasterClip(pc.viewProj, pc.origin.xyz, world); }
@@ -90,31 +100,8 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint triangleId) {
   triangles[slot] = t;
 }
 
-void main() {
-  uint tri = gl_GlobalInvocationID.x;
-  if (tri >= pc.triangleCount) return;
-  uvec3 corner = uvec3(indices[3 * tri], indices[3 * tri + 1], indices[3 * tri + 2]);
-  if (any(greaterThanEqual(corner, uvec3(pc.vertexCount)))) return;  // a host's bad index
-  vec4 v[3];
-  for (int i = 0; i < 3; ++i) v[i] = toClip(vertices[corner[i]].positionU.xyz);
-
-  // Trivial reject against the real frustum (not the guard band): all outside one plane.
-  for (int axis = 0; axis < 2; ++axis) {
-    if (v[0][axis] > v[0].w && v[1][axis] > v[1].w && v[2][axis] > v[2].w) return;
-    if (v[0][axis] < -v[0].w && v[1][axis] < -v[1].w && v[2][axis] < -v[2].w) return;
-  }
-  if (v[0].z < 0.0 && v[1].z < 0.0 && v[2].z < 0.0) return;
-  if (v[0].z > v[0].w && v[1].z > v[1].w && v[2].z > v[2].w) return;
-
-  bool inside = true;
-  for (int k = 0; k < 5; ++k)
-    for (int i = 0; i < 3; ++i) inside = inside && planeDistance(v[i], k) >= 0.0;
-  if (inside) {
-    emit(v[0], v[1], v[2], tri);
-    return;
-  }
-
-  // Sutherland-Hodgman against the near plane and the four guard-band planes.
+// Sutherland-Hodgman against the near plane and the four guard-band planes, then the fan.
+void clipAndEmit(vec4 v[3], uint tri) {
   vec4 poly[RASTER_MAX_CLIP_VERTICES + 1];
   vec4 next[RASTER_MAX_CLIP_VERTICES + 1];
   int n = 3;
@@ -132,4 +119,44 @@ void main() {
     for (int i = 0; i < n; ++i) poly[i] = next[i];
   }
   for (int i = 1; i + 1 < n; ++i) emit(poly[0], poly[i], poly[i + 1], tri);
+}
+
+// The triangle's clip-space corners; false for a host's bad index (the triangle is left out).
+bool loadTriangle(uint tri, out vec4 v[3]) {
+  uvec3 corner = uvec3(indices[3 * tri], indices[3 * tri + 1], indices[3 * tri + 2]);
+  if (any(greaterThanEqual(corner, uvec3(pc.vertexCount)))) return false;
+  for (int i = 0; i < 3; ++i) v[i] = toClip(vertices[corner[i]].positionU.xyz);
+  return true;
+}
+
+void main() {
+  vec4 v[3];
+  if (kClipPass != 0u) {
+    uint entry = gl_GlobalInvocationID.x;
+    if (entry >= counters.clipCount) return;
+    uint tri = clipList[entry];
+    if (loadTriangle(tri, v)) clipAndEmit(v, tri);
+    return;
+  }
+  uint tri = clusterList[gl_WorkGroupID.x] * RASTER_GROUP_SIZE + gl_LocalInvocationID.x;
+  if (tri >= pc.triangleCount || !loadTriangle(tri, v)) return;
+
+  // Trivial reject against the real frustum (not the guard band): all outside one plane.
+  for (int axis = 0; axis < 2; ++axis) {
+    if (v[0][axis] > v[0].w && v[1][axis] > v[1].w && v[2][axis] > v[2].w) return;
+    if (v[0][axis] < -v[0].w && v[1][axis] < -v[1].w && v[2][axis] < -v[2].w) return;
+  }
+  if (v[0].z < 0.0 && v[1].z < 0.0 && v[2].z < 0.0) return;
+  if (v[0].z > v[0].w && v[1].z > v[1].w && v[2].z > v[2].w) return;
+
+  bool inside = true;
+  for (int k = 0; k < 5; ++k)
+    for (int i = 0; i < 3; ++i) inside = inside && planeDistance(v[i], k) >= 0.0;
+  if (inside) {
+    emit(v[0], v[1], v[2], tri);
+    return;
+  }
+  uint entry = atomicAdd(counters.clipCount, 1u);  // clipList holds every triangle: no overflow
+  atomicMax(counters.clipGroupsX, entry / RASTER_GROUP_SIZE + 1u);
+  clipList[entry] = tri;
 }

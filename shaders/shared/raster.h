@@ -46,16 +46,37 @@ struct RasterTriangle {
 };
 
 // Written by raster_setup, consumed by raster_triangles; groups* doubles as the indirect
-// dispatch arguments of raster_triangles.
+// dispatch arguments of raster_triangles, clipGroups* as those of raster_setup's clip pass and
+// clusterCount, clusterGroups* as those of raster_setup itself (raster_cull writes them).
 struct RasterCounters {
-  uint triangleCount;  // entries appended to the RasterTriangle list
-  uint groupsX;        // ceil(triangleCount / RASTER_GROUP_SIZE)
-  uint groupsY;        // the largest group's pixel-box area / RASTER_CHUNK_PIXELS, rounded up
-  uint groupsZ;        // 1
-  uint dropped;        // entries lost because the list was full (a bug if ever non-zero)
+  uint triangleCount;   // entries appended to the RasterTriangle list
+  uint groupsX;         // ceil(triangleCount / RASTER_GROUP_SIZE)
+  uint groupsY;         // the largest group's pixel-box area / RASTER_CHUNK_PIXELS, rounded up
+  uint groupsZ;         // 1
+  uint clipCount;       // triangles listed for clipping (near plane or guard band crossed)
+  uint clipGroupsX;     // ceil(clipCount / RASTER_GROUP_SIZE)
+  uint clipGroupsY;     // 1
+  uint clipGroupsZ;     // 1
+  uint clusterCount;    // clusters kept by raster_cull, one setup work group each
+  uint clusterGroupsY;  // 1
+  uint clusterGroupsZ;  // 1
+  uint dropped;         // entries lost because the list was full (a bug if ever non-zero)
+};
+
+// A cluster: RASTER_GROUP_SIZE consecutive scene triangles (the last one may hold fewer), so
+// triangle ids stay those of the scene. raster_cull skips a cluster whose box lies outside
+// the view before setup reads its vertices (engine/raster_clusters.h).
+struct RasterCluster {
+  vec4 boundsMin;  // xyz: the smallest coordinates of its triangles' vertices; w = 1: never
+                   // culled (a position is not finite); min > max: no triangle to draw
+  vec4 boundsMax;  // xyz: the largest; w unused
+};
+
+struct RasterBoundsPush {
+  uint triangleCount;  // source triangles
+  uint vertexCount;    // a triangle naming a vertex at or past it is left out
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 
 struct RasterSetupPush {
@@ -65,9 +86,9 @@ struct RasterSetupPush {
   uint triangleCount;  // source triangles
   uint capacity;       // RasterTriangle entries available
   uint vertexCount;    // a triangle naming a vertex at or past it is left out
+  uint cullClusters;   // 1: raster_cull skips clusters outside the view; 0: it keeps all
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 
 struct RasterTrianglesPush {
@@ -83,7 +104,9 @@ SHARED_END
 SHARED_ASSERT_SIZE(RasterTriangle, 48);
 SHARED_ASSERT_OFFSET(RasterTriangle, bboxMin, 24);
 SHARED_ASSERT_OFFSET(RasterTriangle, z0, 32);
-SHARED_ASSERT_SIZE(RasterCounters, 32);
+SHARED_ASSERT_SIZE(RasterCounters, 48);
+SHARED_ASSERT_SIZE(RasterCluster, 32);
+SHARED_ASSERT_SIZE(RasterBoundsPush, 16);
 SHARED_ASSERT_SIZE(RasterSetupPush, 112);
 SHARED_ASSERT_SIZE(RasterTrianglesPush, 96);
 #endif

@@ -14,9 +14,12 @@ struct SceneGpu {
   Buffer indices;            // uint32 x 3 per triangle
   Buffer triangleMaterials;  // uint32 per triangle
   Buffer materials;          // gpu::SceneMaterial per material
-  Image baseColorTextures;   // R8G8B8A8_SRGB array, one layer per base-colour texture
-  Image dataTextures;        // R8G8B8A8_UNORM array, one layer per metallic-roughness texture
-  Sampler sampler;           // trilinear, repeat
+  // gpu::RasterCluster per RASTER_GROUP_SIZE triangles (engine/raster_clusters.h): the boxes the
+  // rasterizer culls with. uploadScene fills it; for a host's buffers, ClusterBounds does.
+  Buffer clusters;
+  Image baseColorTextures;  // R8G8B8A8_SRGB array, one layer per base-colour texture
+  Image dataTextures;       // R8G8B8A8_UNORM array, one layer per metallic-roughness texture
+  Sampler sampler;          // trilinear, repeat
   uint32_t triangleCount = 0;
   // The buffers' element counts: the passes leave out a triangle that names a vertex past
   // vertexCount, and give one that names a material past materialCount no reflectance, so a
