@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "engine/device_memory.h"
+
 namespace engine {
 
 Buffer::Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory)
@@ -31,7 +33,7 @@ Buffer::Buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, Memory
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = type;
-  VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+  memory_ = allocateDeviceMemory(device_, alloc);
   VK_CHECK(vkBindBufferMemory(device_, buffer_, memory_, 0));
 
   // Keep host-visible memory mapped: on unified-memory devices (lavapipe, integrated GPUs)
@@ -74,7 +76,7 @@ Buffer Buffer::borrow(VkBuffer buffer, VkDeviceSize size) {
 void Buffer::release() {
   if (!device_) return;
   if (buffer_) vkDestroyBuffer(device_, buffer_, nullptr);
-  if (memory_) vkFreeMemory(device_, memory_, nullptr);  // unmaps implicitly
+  freeDeviceMemory(device_, memory_);  // unmaps implicitly
   buffer_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;

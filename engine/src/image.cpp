@@ -6,6 +6,7 @@
 
 #include "engine/buffer.h"
 #include "engine/commands.h"
+#include "engine/device_memory.h"
 
 namespace engine {
 
@@ -49,7 +50,7 @@ Image::Image(Context& ctx, const ImageDesc& desc) : device_(ctx.device()), desc_
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex =
       ctx.findMemoryType(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &memory_));
+  memory_ = allocateDeviceMemory(device_, alloc);
   VK_CHECK(vkBindImageMemory(device_, image_, memory_, 0));
 
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -106,7 +107,7 @@ void Image::release() {
   for (VkImageView v : mipViews_) vkDestroyImageView(device_, v, nullptr);
   mipViews_.clear();
   if (image_) vkDestroyImage(device_, image_, nullptr);
-  if (memory_) vkFreeMemory(device_, memory_, nullptr);
+  freeDeviceMemory(device_, memory_);
   view_ = VK_NULL_HANDLE;
   image_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
