@@ -86,11 +86,12 @@ bool sameSurface(Surface s, Surface parent) {
              pc.f0Tolerance;
 }
 
-void main() {
-  uvec2 size = uvec2(adaptiveLevelSize(pc.viewport.x, pc.level),
-                     adaptiveLevelSize(pc.viewport.y, pc.level));
-  uvec2 texel = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(texel, size))) return;
+// Which queue a texel joins.
+const uint kNotQueued = 0u, kGlossyQueue = 1u, kPlainQueue = 2u;
+
+// Decides one texel of the level: writes its light where it is interpolated, reused or sky, and
+// returns the queue it joins otherwise.
+uint decideTexel(uvec2 texel) {
   ivec2 store = ivec2(texel);
   uvec2 pixel = adaptiveRepresentative(texel, pc.level);
   Surface s = surfaceAt(pixel);
@@ -100,7 +101,7 @@ void main() {
     imageStore(outGlossy, store, vec4(0.0, 0.0, 0.0, alpha));
     if (pc.level == 0u) imageStore(outLevels, store, vec4(-1.0));
     atomicAdd(head.sky, 1u);
-    return;
+    return kNotQueued;
   }
 
   bool interpolate = pc.level < pc.coarsest;
@@ -160,18 +161,8 @@ void main() {
   if (!interpolate && !reuse) {
     // No glossy term where F0 and F90 are 0, as the shading reads them (non-finite = 0).
     vec4 specular = finiteOr(vec4(s.f0, s.f90), vec4(0.0));
-    uint entry = texel.x | (texel.y << ADAPTIVE_PACK_SHIFT);
-    if (pc.splitGlossy != 0u && all(equal(specular, vec4(0.0)))) {
-      uint index = atomicAdd(plainHead.shaded, 1u);
-      plainEntries[index] = entry;
-      if (index % ADAPTIVE_QUEUE_GROUP == 0u) atomicAdd(plainHead.groupsX, 1u);
-    } else {
-      uint index = atomicAdd(head.shaded, 1u);
-      entries[index] = entry;
-      if (index % ADAPTIVE_QUEUE_GROUP == 0u) atomicAdd(head.groupsX, 1u);
-    }
     if (pc.level == 0u) imageStore(outLevels, store, vec4(0.0));
-    return;
+    return pc.splitGlossy != 0u && all(equal(specular, vec4(0.0))) ? kPlainQueue : kGlossyQueue;
   }
   if (reuse)
     atomicAdd(head.reused, 1u);
@@ -188,5 +179,65 @@ void main() {
   } else {
     imageStore(outDiffuse, store, vec4(diffuse, float(origin)));
     imageStore(outGlossy, store, vec4(glossy, reuse ? 1.0 : 0.0));
+  }
+  return kNotQueued;
+}
+
+// Appends `count` entries to a queue: returns the first index (entries counts the padding,
+// shaded does not) and grows the queue's dispatch to cover them.
+uint reserve(uint queue, uint count, uint padded) {
+  if (queue == kPlainQueue) {
+    uint first = atomicAdd(plainHead.entries, padded);
+    atomicAdd(plainHead.shaded, count);
+    atomicMax(plainHead.groupsX, (first + padded + ADAPTIVE_QUEUE_GROUP - 1u) / ADAPTIVE_QUEUE_GROUP);
+    return first;
+  }
+  uint first = atomicAdd(head.entries, padded);
+  atomicAdd(head.shaded, count);
+  atomicMax(head.groupsX, (first + padded + ADAPTIVE_QUEUE_GROUP - 1u) / ADAPTIVE_QUEUE_GROUP);
+  return first;
+}
+
+void store(uint queue, uint index, uint entry) {
+  if (queue == kPlainQueue)
+    plainEntries[index] = entry;
+  else
+    entries[index] = entry;
+}
+
+// Ordered queues (pc.orderedAlign > 0): the group's texels of each queue, in invocation order.
+shared uint groupQueue[ADAPTIVE_GROUP_X * ADAPTIVE_GROUP_Y];
+
+void main() {
+  uvec2 size = uvec2(adaptiveLevelSize(pc.viewport.x, pc.level),
+                     adaptiveLevelSize(pc.viewport.y, pc.level));
+  uvec2 texel = gl_GlobalInvocationID.xy;
+  uint queue = all(lessThan(texel, size)) ? decideTexel(texel) : kNotQueued;
+  uint entry = texel.x | (texel.y << ADAPTIVE_PACK_SHIFT);
+  if (pc.orderedAlign == 0u) {  // each texel appends itself, in whatever order the device runs
+    if (queue != kNotQueued) store(queue, reserve(queue, 1u, 1u), entry);
+    return;
+  }
+  // One invocation appends the group's texels of each queue as one range, in invocation order,
+  // padded with empty entries to a multiple of orderedAlign, the shading's subgroup size: each
+  // subgroup of the shading pass then holds the same texels in every run, however the groups'
+  // ranges are ordered, and VSGL culling, which decides per subgroup, is deterministic.
+  groupQueue[gl_LocalInvocationIndex] = queue;
+  barrier();
+  if (gl_LocalInvocationIndex != 0u) return;
+  const uint invocations = ADAPTIVE_GROUP_X * ADAPTIVE_GROUP_Y;
+  for (uint q = kGlossyQueue; q <= kPlainQueue; ++q) {
+    uint count = 0u;
+    for (uint i = 0u; i < invocations; ++i) count += groupQueue[i] == q ? 1u : 0u;
+    if (count == 0u) continue;
+    uint padded = (count + pc.orderedAlign - 1u) / pc.orderedAlign * pc.orderedAlign;
+    uint next = reserve(q, count, padded);
+    uvec2 origin = gl_WorkGroupID.xy * uvec2(ADAPTIVE_GROUP_X, ADAPTIVE_GROUP_Y);
+    for (uint i = 0u; i < invocations; ++i) {
+      if (groupQueue[i] != q) continue;
+      uvec2 t = origin + uvec2(i % ADAPTIVE_GROUP_X, i / ADAPTIVE_GROUP_X);
+      store(q, next++, t.x | (t.y << ADAPTIVE_PACK_SHIFT));
+    }
+    for (uint i = count; i < padded; ++i) store(q, next++, ADAPTIVE_QUEUE_EMPTY);
   }
 }

@@ -139,8 +139,9 @@ void main() {
   bool inside = all(lessThan(pixel, pc.viewport));
   if (queued) {
     uint index = gl_WorkGroupID.x * ADAPTIVE_QUEUE_GROUP + gl_LocalInvocationIndex;
-    inside = index < head.shaded;
-    uint entry = entries[min(index, head.shaded - 1u)];
+    uint entry = entries[min(index, head.entries - 1u)];
+    inside = index < head.entries && entry != ADAPTIVE_QUEUE_EMPTY;  // padding shades nothing
+    if (!inside) entry = 0u;
     target = uvec2(entry & ((1u << ADAPTIVE_PACK_SHIFT) - 1u), entry >> ADAPTIVE_PACK_SHIFT);
     pixel = adaptiveRepresentative(target, pc.level);
   }

@@ -21,13 +21,15 @@
 #define ADAPTIVE_PACK_SHIFT 16u
 // The queue is shaded by 1-D groups of this many invocations (the shading pass's group size).
 #define ADAPTIVE_QUEUE_GROUP 64u
+// A queue entry that pads an ordered group's range (AdaptiveDecidePush::orderedAlign): no texel.
+#define ADAPTIVE_QUEUE_EMPTY 0xFFFFFFFFu
 
 SHARED_BEGIN
 
 // The head of one level's queue; the texel entries (uint) follow it in the same buffer. The
 // first three words are the VkDispatchIndirectCommand that shades the queue.
 struct AdaptiveQueueHeader {
-  uint groupsX;       // ceil(shaded / ADAPTIVE_QUEUE_GROUP)
+  uint groupsX;       // ceil(entries / ADAPTIVE_QUEUE_GROUP)
   uint groupsY;       // 1
   uint groupsZ;       // 1
   uint shaded;        // entries appended this frame
@@ -37,7 +39,7 @@ struct AdaptiveQueueHeader {
   // Level 0 only: interpolated and reused pixels by the level their light was shaded at
   // (followed through the parent with the largest weight, the diffuse alpha of the levels).
   uint fromLevel[4];
-  uint pad;
+  uint entries;  // entries written: shaded, plus the padding of ordered queues
 };
 
 struct AdaptiveDecidePush {
@@ -54,7 +56,12 @@ struct AdaptiveDecidePush {
   // 1: texels whose F0 and F90 are 0 (no glossy term) go to the plain queue, shaded without the
   // glossy term (PlannerSettings::skipGlossyWithoutSpecular).
   uint splitGlossy;
-  uint pad[2];
+  // 0: texels append themselves to the queues in the order the device runs them. > 0 (VSGL
+  // culling on): each decide group appends its texels as one range in invocation order, padded
+  // to a multiple of this, the shading pass's largest subgroup size, so that every subgroup
+  // that shades the queue holds the same texels in every run.
+  uint orderedAlign;
+  uint pad;
 };
 
 SHARED_END

@@ -66,9 +66,12 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
     std::vector<gpu::AdaptiveQueueHeader> heads;
     gi::ShadingCounts counts;
     std::vector<float> levelMap;  // per pixel: the level its light was shaded at, -1 sky
+    uint32_t padding = 0;         // empty entries of ordered queues, every level
   };
 
-  Run run(const gi::AdaptiveSettings& settings, bool splitGlossy = true) {
+  // `ordered`: with VSGL culling (budget 0, which skips only VSGLs whose bound is 0), so that the
+  // decision pass appends its queues in order, padded (AdaptiveDecidePush::orderedAlign).
+  Run run(const gi::AdaptiveSettings& settings, bool splitGlossy = true, bool ordered = false) {
     engine::Buffer buffer(ctx(), vsgls_.size() * sizeof(gpu::Vsgl),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::Upload);
     buffer.upload(ctx(), std::span<const gpu::Vsgl>(vsgls_));
@@ -76,8 +79,9 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
     gi::VsglShade shade(ctx());
     gi::AdaptiveShading pass(ctx(), kWidth, kHeight);
     gi::IndirectImages out = gi::createIndirectImages(ctx(), kWidth, kHeight);
-    const gi::VsglShade::Inputs in{&buffer, uint32_t(vsgls_.size()), VSGL_SHADE_GLOSSY,
-                                   &ism.atlas(), ism.params()};
+    gi::VsglShade::Inputs in{&buffer, uint32_t(vsgls_.size()), VSGL_SHADE_GLOSSY, &ism.atlas(),
+                             ism.params()};
+    if (ordered) in.flags |= VSGL_SHADE_CULL;
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
       pass.record(cmd, *gbuffer_, view_, in, settings, splitGlossy, shade, out);
     });
@@ -107,9 +111,11 @@ class AdaptiveShadingTest : public testing_gpu::GpuTest {
         gpu::AdaptiveQueueHeader head;
         std::memcpy(&head, words.data(), sizeof(head));
         const size_t first = sizeof(head) / 4;
-        const std::set<uint32_t> texels(words.begin() + first, words.begin() + first + head.shaded);
+        std::set<uint32_t> texels(words.begin() + first, words.begin() + first + head.entries);
+        texels.erase(ADAPTIVE_QUEUE_EMPTY);  // an ordered queue's padding
         EXPECT_EQ(texels.size(), head.shaded) << "a texel queued twice";
-        EXPECT_EQ(head.groupsX, (head.shaded + ADAPTIVE_QUEUE_GROUP - 1) / ADAPTIVE_QUEUE_GROUP);
+        r.padding += head.entries - head.shaded;
+        EXPECT_EQ(head.groupsX, (head.entries + ADAPTIVE_QUEUE_GROUP - 1) / ADAPTIVE_QUEUE_GROUP);
         r.queues.back().insert(texels.begin(), texels.end());
         if (plain) {
           r.plain.back() = texels;
@@ -162,13 +168,15 @@ uint32_t pack(uint32_t x, uint32_t y) {
 // - Interpolated texels: the same four parent values and weights from integer pixel positions,
 //   summed in fp32 against double: 1e-5 of the value plus 1e-7 of the largest.
 TEST_F(AdaptiveShadingTest, LevelsMatchTheTwin) {
-  for (uint32_t coarsest : {2u, 3u}) {
+  for (const auto& [coarsest, ordered] : {std::pair{2u, false}, {3u, false}, {3u, true}}) {
+    SCOPED_TRACE(ordered ? "ordered queues" : "queues in device order");
     gi::AdaptiveSettings settings;
     settings.coarsestLevel = coarsest;
     // These few VSGLs light the small image unevenly: a wider tolerance than the default
     // gives every level a mix of queued and interpolated texels.
     settings.lightTolerance = 0.5f;
-    const Run gpu = run(settings);
+    const Run gpu = run(settings, true, ordered);
+    EXPECT_EQ(gpu.padding > 0, ordered) << gpu.padding << " empty queue entries";
     size_t interpolatedAtZero = 0, queuedAtZero = 0, sky = 0, interpolatedAbove = 0,
            plainQueued = 0;
     for (uint32_t level = coarsest + 1; level-- > 0;) {

@@ -1,9 +1,11 @@
 #include "passes/adaptive_shading.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include "engine/commands.h"
+#include "engine/error.h"
 #include "spirv/adaptive_decide.h"
 
 namespace gi {
@@ -27,18 +29,40 @@ gpu::AdaptiveDecidePush adaptiveDecidePush(const AdaptiveSettings& settings,
 
 namespace {
 
+// A level's queue: its header, then an entry per texel and, for ordered queues, the padding of
+// each decide group (below ADAPTIVE_QUEUE_GROUP: orderedAlign is a subgroup size that divides it).
 engine::Buffer queueBuffer(engine::Context& ctx, uint32_t width, uint32_t height, uint32_t level) {
-  const VkDeviceSize texels =
-      VkDeviceSize{gpu::adaptiveLevelSize(width, level)} * gpu::adaptiveLevelSize(height, level);
-  return engine::Buffer(ctx, sizeof(gpu::AdaptiveQueueHeader) + 4 * texels,
+  const uint32_t w = gpu::adaptiveLevelSize(width, level),
+                 h = gpu::adaptiveLevelSize(height, level);
+  const VkDeviceSize groups = VkDeviceSize{engine::groupCount(w, ADAPTIVE_GROUP_X)} *
+                              engine::groupCount(h, ADAPTIVE_GROUP_Y);
+  const VkDeviceSize entries = VkDeviceSize{w} * h + groups * (ADAPTIVE_QUEUE_GROUP - 1);
+  return engine::Buffer(ctx, sizeof(gpu::AdaptiveQueueHeader) + 4 * entries,
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                         engine::MemoryUsage::GpuOnly);
+}
+
+// The largest subgroup size a compute pipeline may run with (Vulkan 1.3): ordered queues pad to
+// it, so that subgroups of any size that divides it start at a range's start.
+uint32_t largestSubgroupSize(engine::Context& ctx) {
+  VkPhysicalDeviceVulkan13Properties v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
+                                              &v13};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
+  vkGetPhysicalDeviceProperties2(ctx.physicalDevice(), &props);
+  const uint32_t largest = std::max(subgroup.subgroupSize, v13.maxSubgroupSize);
+  if (largest == 0 || ADAPTIVE_QUEUE_GROUP % largest != 0)
+    throw engine::Error("adaptive shading: subgroup size " + std::to_string(largest) +
+                        " does not divide the queue group of " +
+                        std::to_string(ADAPTIVE_QUEUE_GROUP));
+  return largest;
 }
 
 }  // namespace
 
 AdaptiveShading::AdaptiveShading(engine::Context& ctx, uint32_t width, uint32_t height)
     : ctx_(&ctx),
+      subgroupAlign_(largestSubgroupSize(ctx)),
       width_(width),
       height_(height),
       decide_(ctx, "adaptive_decide", kAdaptiveDecideSpv,
@@ -85,8 +109,10 @@ void AdaptiveShading::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
     IndirectImages& target = level == 0 ? out : levels_[level - 1];
     // The parents: level + 1, or at the coarsest level (never read) the level's own images.
     IndirectImages& parent = level < coarsest ? levels_[level] : target;
-    const gpu::AdaptiveDecidePush push =
+    gpu::AdaptiveDecidePush push =
         adaptiveDecidePush(settings, camera, width_, height_, level, splitGlossy);
+    // VSGL culling decides per subgroup of the queue: its texels must be the same every run.
+    if (in.flags & VSGL_SHADE_CULL) push.orderedAlign = subgroupAlign_;
     {
       engine::ProfileScope decideScope(profiler, cmd, "adaptive decide L" + std::to_string(level));
       decide_.dispatch(

@@ -46,6 +46,7 @@ class AdaptiveShading {
 
  private:
   engine::Context* ctx_;
+  uint32_t subgroupAlign_;  // AdaptiveDecidePush::orderedAlign when VSGL culling is on
   uint32_t width_, height_;
   engine::ComputeProgram decide_;
   std::vector<IndirectImages> levels_;  // levels 1..ADAPTIVE_MAX_LEVEL
