@@ -591,6 +591,7 @@ PathTraceImage cachedPathTrace(const ReferenceCache& cache, const engine::Scene&
   key.add(settings.mirrorSampling);
   // Channels: direct, diffuse, glossy (3 each), standard error, samples.
   constexpr uint32_t kChannels = 11;
+  const ReferenceCache::EntryLock hold(cache, "pathtrace", key);  // one tracer per reference
   if (std::optional<CachedImage> c = cache.load("pathtrace", key);
       c && c->channels == kChannels && c->scalars.size() == 4) {
     if (fromCache) *fromCache = true;

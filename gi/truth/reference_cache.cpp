@@ -1,5 +1,7 @@
 #include "reference_cache.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -165,6 +167,19 @@ void ReferenceCache::store(const std::string& kind, const CacheKey& key,
     std::filesystem::remove(temporary);
     throw engine::Error(file + ": cannot write the reference: " + ec.message());
   }
+}
+
+ReferenceCache::EntryLock::EntryLock(const ReferenceCache& cache, const std::string& kind,
+                                     const CacheKey& key)
+    : fd_(::open((cache.path(kind, key) + ".lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+  if (fd_ >= 0 && ::flock(fd_, LOCK_EX) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+}
+
+ReferenceCache::EntryLock::~EntryLock() {
+  if (fd_ >= 0) ::close(fd_);  // closing releases the flock
 }
 
 }  // namespace truth

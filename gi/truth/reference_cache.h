@@ -61,6 +61,22 @@ class ReferenceCache {
   // Throws engine::Error naming the file when it cannot be written.
   void store(const std::string& kind, const CacheKey& key, const CachedImage& image) const;
 
+  // An exclusive hold on one entry across processes (flock on "<entry>.lock"), for the span
+  // of a load, a computation and a store: a second process that asks for the same reference
+  // (tests run in parallel) waits and then loads it instead of tracing it again. Released when
+  // destroyed; without a lock file (a read-only directory) it holds nothing and only costs
+  // the duplicate work.
+  class EntryLock {
+   public:
+    EntryLock(const ReferenceCache& cache, const std::string& kind, const CacheKey& key);
+    ~EntryLock();
+    EntryLock(const EntryLock&) = delete;
+    EntryLock& operator=(const EntryLock&) = delete;
+
+   private:
+    int fd_ = -1;
+  };
+
  private:
   std::string directory_;
 };

@@ -2,8 +2,12 @@
 // entry is reported and rendered again, and cachedPathTrace renders once.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <thread>
 
 #include "analytic_scene.h"
 #include "path_tracer.h"
@@ -25,6 +29,29 @@ truth::CachedImage smallImage() {
   truth::CachedImage image{2, 3, 2, {}, {4.5, -1.0}};
   for (int i = 0; i < 12; ++i) image.values.push_back(0.1 * i - 0.35);
   return image;
+}
+
+// Tests run in parallel ask for the same reference: the second waits for the first's entry
+// rather than tracing it again. A second holder of the same entry's lock blocks until the first
+// lets go (flock, which holds between two opens in one process as between processes).
+TEST(ReferenceCache, EntryLockMakesASecondHolderWait) {
+  const TempDirectory dir("lock");
+  const truth::ReferenceCache cache(dir.path);
+  truth::CacheKey key;
+  key.add(7);
+  std::atomic<int> stage{0};  // 1: the first let go; 2: the second got it after that
+  std::optional<truth::ReferenceCache::EntryLock> first;
+  first.emplace(cache, "test", key);
+  std::thread second([&] {
+    const truth::ReferenceCache::EntryLock lock(cache, "test", key);
+    stage = stage == 1 ? 2 : -1;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(stage, 0) << "the second holder did not wait";
+  stage = 1;
+  first.reset();
+  second.join();
+  EXPECT_EQ(stage, 2);
 }
 
 TEST(ReferenceCache, StoredEntryComesBackBitForBit) {
