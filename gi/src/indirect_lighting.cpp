@@ -125,6 +125,7 @@ Status failure(const std::string& message) {
 struct LightView {
   RsmView view;
   engine::Light light;
+  uint32_t lightIndex = 0;  // in FrameInput::lights
   LightViewInputs inputs;
 };
 
@@ -182,6 +183,16 @@ struct IndirectLighting::Impl {
       moreAttributes.push_back(std::make_unique<VsglAttributes>(ctx, settings.rsmSize));
     return *moreAttributes[v - 1];
   }
+  // View v's light-view buffer, created with the first frame that has the view.
+  const engine::Buffer& lightViewMap(uint32_t v) {
+    while (lightViewMaps.size() <= v) {
+      lightViewMaps.emplace_back(
+          ctx, engine::Rasterizer::visibilityBytes(settings.rsmSize, settings.rsmSize),
+          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
+      lightViewMapInputs.emplace_back();
+    }
+    return lightViewMaps[v];
+  }
   // The environment's conversion (when it changed) and shading into `environmentImages`.
   void recordEnvironment(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& camera);
 
@@ -200,6 +211,10 @@ struct IndirectLighting::Impl {
   engine::GBufferResolve resolve;
   MipPyramid mips;
   ReflectiveShadowMap rsm;
+  // Each RSM view's rasterized light view (FrameOutput::lightViews) and the inputs it was
+  // rasterized from (none: not yet, or another view's since).
+  std::vector<engine::Buffer> lightViewMaps;
+  std::vector<std::optional<LightViewInputs>> lightViewMapInputs;
   VsglAttributes attributes;  // of view 0
   // Of views 1.. (a point light's other faces, the other lights), created as frames need them:
   // every view's pyramids live until the VSGLs are shared among the views.
@@ -401,7 +416,7 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
     uint32_t face = 0;
     for (const RsmView& view : makeRsmViews(bounds, light, settings.rsmSize))
       views.push_back(
-          {view, light, {sceneIn, in.lights[i], face++, plan.specularLobes, settings.pdf}});
+          {view, light, i, {sceneIn, in.lights[i], face++, plan.specularLobes, settings.pdf}});
   }
 
   // Every view's pyramids exist before the deferred setup that gives new images their layout.
@@ -476,6 +491,12 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
   out.vsglCount = vsgls ? settings.vsglCount : 0;
   out.vsglViews = allocation.ranges().handle();
   out.viewCount = vsgls ? static_cast<uint32_t>(views.size()) : 0;
+  for (uint32_t v = 0; v < out.viewCount; ++v) {
+    if (v >= lightViewMapInputs.size() || lightViewMapInputs[v] != views[v].inputs) continue;
+    const LightViewInputs& i = views[v].inputs;
+    out.lightViews.push_back({views[v].lightIndex, i.face, settings.rsmSize,
+                              views[v].view.view.viewProj, lightViewMaps[v].handle(), 0});
+  }
   out.gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
 }
 
@@ -532,7 +553,9 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
           clusterBounds.record(cmd, *scene, &profiler);
           last.clusterBounds = sceneIn;
         }
-        rsm.record(cmd, *scene, rasterizer, resolve, view, views[v].light, &profiler);
+        rsm.record(cmd, *scene, rasterizer, resolve, view, views[v].light, &profiler,
+                   &lightViewMap(v));
+        lightViewMapInputs[v] = views[v].inputs;
         pyramids.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler, plan.specularLobes);
         kept = views[v].inputs;
         if (!ownPyramids) kept.reset();  // the next view overwrites them

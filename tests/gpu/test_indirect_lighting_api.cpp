@@ -16,6 +16,7 @@
 #include "engine/gbuffer.h"
 #include "engine/gbuffer_reference.h"
 #include "engine/image_metrics.h"
+#include "engine/raster_reference.h"
 #include "engine/rasterizer.h"
 #include "gi/indirect_lighting.h"
 #include "gi_host.h"
@@ -638,6 +639,66 @@ TEST_F(IndirectLightingApiTest, BadInputComesBackAsStatus) {
   next.rsmSize = 128;
   EXPECT_FALSE(lighting->setSettings(next));
   EXPECT_EQ(lighting->settings().rsmSize, 64u);
+}
+
+// FrameOutput::lightViews: every RSM view's rasterized light view, for a host to shadow with. A
+// spot light and a point light (six faces, the light a second entry of FrameInput::lights after
+// a light with no power, which gets no view): each view's matrix is the RSM's, its texels equal
+// the CPU rasterizer's of the same transform bit for bit, and a second frame that keeps
+// everything (reuse) reports the same views with the same texels.
+TEST_F(IndirectLightingApiTest, LightViewsAreTheRsmsRasterizedViews) {
+  engine::Light point = scene_.lights.at(0);
+  point.type = engine::LightType::Point;
+  point.position = glm::vec3(0.0f, 1.0f, 0.0f);
+  gi::Light dark = samples::apiLight(scene_.lights.at(0));
+  dark.intensity = 0.0f;
+  for (bool pointLight : {false, true}) {
+    SCOPED_TRACE(pointLight ? "point light" : "spot light");
+    const engine::Light& light = pointLight ? point : scene_.lights.at(0);
+    gi::Settings settings = smallSettings();
+    gi::Status status;
+    auto lighting = gi::IndirectLighting::create(handles(), settings, kWidth, kHeight, &status);
+    ASSERT_TRUE(lighting) << status.message;
+    ASSERT_TRUE(lighting->setScene(geometry()));
+    gi::FrameInput in = input();
+    in.gbufferGeneration = in.sceneGeneration = 1;  // numbered: the second frame keeps all
+    if (pointLight) in.lights = {dark, samples::apiLight(point)};
+    const std::vector<gi::RsmView> views =
+        gi::makeRsmViews(scene_.bounds(), light, settings.rsmSize);
+    for (int frame = 0; frame < 2; ++frame) {
+      gi::FrameOutput out;
+      ctx().submitAndWait(
+          [&](VkCommandBuffer cmd) { EXPECT_TRUE(lighting->record(cmd, in, &out)); });
+      for (engine::Image* image :
+           {&gbuffer_->depth, &gbuffer_->normal, &gbuffer_->diffuse, &gbuffer_->specular})
+        image->setLayout(out.gbufferLayout);
+      if (frame == 1) {
+        EXPECT_TRUE(lighting->lastPlan().reuse.shading);
+      }
+      ASSERT_EQ(out.lightViews.size(), views.size());
+      for (uint32_t v = 0; v < views.size(); ++v) {
+        SCOPED_TRACE("frame " + std::to_string(frame) + ", view " + std::to_string(v));
+        const gi::LightViewOutput& o = out.lightViews[v];
+        EXPECT_EQ(o.light, pointLight ? 1u : 0u);
+        EXPECT_EQ(o.face, v);
+        EXPECT_EQ(o.size, settings.rsmSize);
+        EXPECT_EQ(o.viewProj, views[v].view.viewProj);
+        const VkDeviceSize bytes = engine::Rasterizer::visibilityBytes(o.size, o.size);
+        const engine::Buffer borrowed = engine::Buffer::borrow(o.visibility, o.offset + bytes);
+        const std::vector<uint64_t> texels = borrowed.readbackAs<uint64_t>(ctx());
+        const std::vector<uint64_t> twin =
+            engine::rasterizeReference(scene_, views[v].raster, o.size, o.size).visibility;
+        ASSERT_EQ(texels.size(), twin.size());
+        size_t differing = 0, covered = 0;
+        for (size_t i = 0; i < twin.size(); ++i) {
+          differing += texels[i] != twin[i];
+          covered += twin[i] != ~uint64_t{0};
+        }
+        EXPECT_EQ(differing, 0u);
+        EXPECT_GT(covered, 0u);
+      }
+    }
+  }
 }
 
 // A point light bounces through six cube faces, each with its own attribute pyramids and PDF

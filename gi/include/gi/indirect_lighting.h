@@ -191,7 +191,8 @@ struct FrameInput {
   // power, or whose range ends before the scene, gets no RSM (FramePlan). One shading pass
   // shades them all. Each extra view (a spot or directional light is one, a point light six)
   // costs its RSM, attribute and PDF passes (lavapipe: about 45 ms at rsmSize 256) and 128 x
-  // rsmSize^2 x 4/3 bytes of attribute pyramids (8.4 MB at 256).
+  // rsmSize^2 x 4/3 bytes of attribute pyramids (8.4 MB at 256) and 8 x rsmSize^2 bytes for its
+  // light view (FrameOutput::lightViews, 0.5 MB at 256).
   std::vector<Light> lights;
   // What changed since earlier frames, for reuse across frames (Settings::reuse,
   // docs/techniques/reuse.md): each is a number the host changes whenever the content it names
@@ -203,6 +204,25 @@ struct FrameInput {
   // The content of SceneGeometry's buffers and textures (vertices moved in place, materials
   // edited). A setScene call is a change by itself.
   uint64_t sceneGeneration = 0;
+};
+
+// One view of a bouncing light as the module's RSM rasterized it this frame (or kept it from an
+// earlier one, reuse), for a host that shadows its direct light with it instead of rasterizing
+// the light's view again. docs/integration.md, "The light's view".
+struct LightViewOutput {
+  uint32_t light = 0;  // index into FrameInput::lights
+  uint32_t face = 0;   // a point light's cube face (+x, -x, +y, -y, +z, -z), else 0
+  uint32_t size = 0;   // texels per side (Settings::rsmSize)
+  // World -> Vulkan clip space (x right, y down, depth [0, 1]) of the view: a spot's square
+  // frustum around its outer cone, a directional light's box around the scene's bounds, a
+  // point light's 90-degree cube face; near and far planes from SceneGeometry's bounds.
+  glm::mat4 viewProj{1.0f};
+  // size x size uint64 texels from `offset`, row 0 at the top (NDC y = -1): (NDC depth as float
+  // bits << 32) | triangle id of the nearest surface, all ones where the view sees nothing; the
+  // texel (x, y) samples NDC ((x + 0.5) / size * 2 - 1, (y + 0.5) / size * 2 - 1). Owned by the
+  // module, written by compute and visible to any later stage; valid until the next record.
+  VkBuffer visibility = VK_NULL_HANDLE;
+  VkDeviceSize offset = 0;
 };
 
 struct FrameOutput {
@@ -229,6 +249,9 @@ struct FrameOutput {
   // directional light, six for a point light's cube faces (+x, -x, +y, -y, +z, -z).
   VkBuffer vsglViews = VK_NULL_HANDLE;
   uint32_t viewCount = 0;
+  // The RSM views of this frame's bouncing lights (FramePlan::lights), in the order of
+  // vsglViews; a view the frame gave no VSGLs and did not rasterize is left out.
+  std::vector<LightViewOutput> lightViews;
   // Layout the module left the host's G-buffer images in.
   VkImageLayout gbufferLayout = VK_IMAGE_LAYOUT_GENERAL;
 };

@@ -76,11 +76,12 @@ ReflectiveShadowMap::ReflectiveShadowMap(engine::Context& ctx, uint32_t size)
 void ReflectiveShadowMap::record(VkCommandBuffer cmd, const engine::SceneGpu& scene,
                                  engine::Rasterizer& rasterizer, engine::GBufferResolve& resolve,
                                  const RsmView& view, const engine::Light& light,
-                                 engine::GpuProfiler* profiler) {
+                                 engine::GpuProfiler* profiler, const engine::Buffer* visibility) {
+  const engine::Buffer& target = visibility ? *visibility : visibility_;
   {
     engine::ProfileScope scope(profiler, cmd, "rsm raster");
-    rasterizer.record(cmd, scene, view.raster, {&visibility_, 0, size_, size_});
-    resolve.record(cmd, scene, visibility_, view.view, surface_, nullptr,
+    rasterizer.record(cmd, scene, view.raster, {&target, 0, size_, size_});
+    resolve.record(cmd, scene, target, view.view, surface_, nullptr,
                    engine::BackFaces::PerMaterial);
   }
   flux_.record(cmd, surface_, view, lightFluxSource(light), vpls_, profiler);

@@ -42,9 +42,11 @@ class ReflectiveShadowMap {
  public:
   ReflectiveShadowMap(engine::Context& ctx, uint32_t size);
 
+  // `visibility` (size^2 uint64, engine::Rasterizer's format): where the light's view is
+  // rasterized; null: the RSM's own buffer.
   void record(VkCommandBuffer cmd, const engine::SceneGpu& scene, engine::Rasterizer& rasterizer,
               engine::GBufferResolve& resolve, const RsmView& view, const engine::Light& light,
-              engine::GpuProfiler* profiler = nullptr);
+              engine::GpuProfiler* profiler = nullptr, const engine::Buffer* visibility = nullptr);
 
   uint32_t size() const { return size_; }
   engine::GBuffer& surface() { return surface_; }  // the light's G-buffer (normals live here)
