@@ -112,15 +112,46 @@ void DirectLighting::upload(Context& ctx, const Scene& scene) {
     shadowMaps_ = Buffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::GpuOnly);
 }
 
+gpu::ShadowView givenShadowView(const glm::mat4& viewProj, uint32_t resolution) {
+  const glm::vec3 row0(viewProj[0][0], viewProj[1][0], viewProj[2][0]);
+  const glm::vec3 rowW(viewProj[0][3], viewProj[1][3], viewProj[2][3]);
+  const float texel = 2.0f / (glm::length(row0) * static_cast<float>(resolution));
+  const bool perspective = glm::length(rowW) > 0.0f;
+  return {viewProj,
+          perspective ? glm::vec4(texel, 0.0f, 0.0f, 0.0f) : glm::vec4(0.0f, texel, 0.0f, 0.0f)};
+}
+
 void DirectLighting::record(VkCommandBuffer cmd, const SceneGpu& scene, Rasterizer& rasterizer,
                             const GBuffer& g, const View& view, Image& radiance,
-                            GpuProfiler* profiler) {
+                            GpuProfiler* profiler, std::span<const GivenShadowMap> given) {
   const uint32_t res = settings_.shadowResolution;
   VkDeviceSize mapBytes = Rasterizer::visibilityBytes(res, res);
-  for (size_t i = 0; i < setup_.views.size(); ++i) {
-    ProfileScope scope(profiler, cmd, "shadow maps");
-    rasterizer.record(cmd, scene, setup_.views[i].viewProj, {&shadowMaps_, i * mapBytes, res, res});
+  // Every view's record each frame: a given map's view replaces the setup's for this frame only.
+  std::vector<gpu::ShadowView> views = setup_.views;
+  std::vector<const GivenShadowMap*> givenFor(views.size(), nullptr);
+  for (const GivenShadowMap& m : given) {
+    if (m.view >= views.size())
+      throw Error("direct light: given shadow map for view " + std::to_string(m.view) + " of " +
+                  std::to_string(views.size()));
+    givenFor[m.view] = &m;
+    views[m.view] = givenShadowView(m.viewProj, res);
   }
+  if (!given.empty() && !views.empty())
+    updateBuffer(cmd, views_, views.data(), views.size() * sizeof(gpu::ShadowView));
+  for (size_t i = 0; i < views.size(); ++i) {
+    ProfileScope scope(profiler, cmd, "shadow maps");
+    if (givenFor[i]) {
+      computeToTransferBarrier(cmd);
+      const VkBufferCopy copy{givenFor[i]->offset, i * mapBytes, mapBytes};
+      vkCmdCopyBuffer(cmd, givenFor[i]->buffer, shadowMaps_.handle(), 1, &copy);
+      transferToComputeBarrier(cmd);
+    } else {
+      rasterizer.record(cmd, scene, views[i].viewProj, {&shadowMaps_, i * mapBytes, res, res});
+    }
+  }
+  if (given.empty() && !views.empty() && viewsGiven_)
+    updateBuffer(cmd, views_, views.data(), views.size() * sizeof(gpu::ShadowView));
+  viewsGiven_ = !given.empty();
   ProfileScope scope(profiler, cmd, "direct light");
   gpu::DirectLightPush push{
       view.invViewProj, {g.width, g.height}, static_cast<uint32_t>(setup_.lights.size()), res};

@@ -34,6 +34,7 @@ HostFrame::HostFrame(engine::Context& ctx, const engine::Scene& scene, uint32_t 
       rasterizer_(ctx),
       resolve_(ctx),
       direct_(ctx, scene, direct),
+      shadowResolution_(direct.shadowResolution),
       gbuffer_(engine::createGBuffer(ctx, width, height)),
       visibility_(ctx, engine::Rasterizer::visibilityBytes(width, height),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly),
@@ -45,9 +46,37 @@ void HostFrame::setLights(engine::Context& ctx, const engine::Scene& scene) {
 
 void HostFrame::record(VkCommandBuffer cmd, const engine::SceneGpu& scene, const engine::View& view,
                        engine::GpuProfiler* profiler) {
+  recordGBuffer(cmd, scene, view, profiler);
+  recordDirectLight(cmd, scene, view, profiler);
+}
+
+void HostFrame::recordGBuffer(VkCommandBuffer cmd, const engine::SceneGpu& scene,
+                              const engine::View& view, engine::GpuProfiler* profiler) {
   rasterizer_.record(cmd, scene, view.viewProj, {&visibility_, 0, width_, height_}, profiler);
   resolve_.record(cmd, scene, visibility_, view, gbuffer_, profiler);
-  direct_.record(cmd, scene, rasterizer_, gbuffer_, view, radiance_, profiler);
+}
+
+void HostFrame::recordDirectLight(VkCommandBuffer cmd, const engine::SceneGpu& scene,
+                                  const engine::View& view, engine::GpuProfiler* profiler,
+                                  std::span<const gi::LightViewOutput> lightViews) {
+  const engine::LightSetup& setup = direct_.setup();
+  std::vector<engine::GivenShadowMap> given;
+  for (uint32_t light = 0; light < setup.lights.size(); ++light) {
+    const uint32_t first = setup.lights[light].info.y, count = setup.lights[light].info.z;
+    std::vector<const gi::LightViewOutput*> faces;
+    for (const gi::LightViewOutput& v : lightViews)
+      if (v.light == light) faces.push_back(&v);
+    // Both order a cube's faces +x, -x, +y, -y, +z, -z; a spot the host renders as a cube
+    // (wider than one view holds) keeps its own maps.
+    if (count == 0 || faces.size() != count) continue;
+    bool usable = true;
+    for (const gi::LightViewOutput* f : faces) usable = usable && f->size == shadowResolution_;
+    if (!usable) continue;
+    for (const gi::LightViewOutput* f : faces)
+      given.push_back({first + f->face, f->visibility, f->offset, f->viewProj});
+  }
+  shadowedByModule_ = static_cast<uint32_t>(given.size());
+  direct_.record(cmd, scene, rasterizer_, gbuffer_, view, radiance_, profiler, given);
 }
 
 FrameImages readFrame(engine::Context& ctx, HostFrame& host, const gi::FrameOutput* output,

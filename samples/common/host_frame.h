@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "engine/direct_light.h"
 #include "engine/gbuffer.h"
@@ -27,6 +28,17 @@ class HostFrame {
   // The G-buffer of `view` (width x height) and its direct light into radiance().
   void record(VkCommandBuffer cmd, const engine::SceneGpu& scene, const engine::View& view,
               engine::GpuProfiler* profiler);
+  // The same in two halves, for a host that records the module in between and shadows with its
+  // light views (gi::FrameOutput::lightViews, FrameInput::lights being the scene's first
+  // lights in order): a light whose views the module rasterized at the shadow resolution, as
+  // many as the host's own, takes them instead of rasterizing its own (shadowedByModule()).
+  void recordGBuffer(VkCommandBuffer cmd, const engine::SceneGpu& scene, const engine::View& view,
+                     engine::GpuProfiler* profiler);
+  void recordDirectLight(VkCommandBuffer cmd, const engine::SceneGpu& scene,
+                         const engine::View& view, engine::GpuProfiler* profiler,
+                         std::span<const gi::LightViewOutput> lightViews = {});
+  // The views the last recordDirectLight took from the module.
+  uint32_t shadowedByModule() const { return shadowedByModule_; }
 
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
@@ -38,9 +50,11 @@ class HostFrame {
   engine::Rasterizer rasterizer_;
   engine::GBufferResolve resolve_;
   engine::DirectLighting direct_;
+  uint32_t shadowResolution_;
   engine::GBuffer gbuffer_;
   engine::Buffer visibility_;
   engine::Image radiance_;
+  uint32_t shadowedByModule_ = 0;
 };
 
 // A frame read back: each term the final image is the sum of.

@@ -130,8 +130,12 @@ int run(const render::Options& o) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       profiler.beginFrame(cmd);
       engine::ProfileScope total(&profiler, cmd, "host frame");
-      host.record(cmd, *gpuScene, view, &profiler);
+      host.recordGBuffer(cmd, *gpuScene, view, &profiler);
       if (indirect) samples::check(indirect->record(cmd, input, &output));
+      // The direct light after the module, so that it can shadow with the module's light views.
+      host.recordDirectLight(cmd, *gpuScene, view, &profiler,
+                             o.shadowsFromModule ? std::span(output.lightViews)
+                                                 : std::span<const gi::LightViewOutput>());
     });
     if (frame < o.warmup) continue;  // lavapipe compiles pipelines at their first dispatch
     // A pass that did not run in a frame (kept from an earlier one) counts 0 there.
@@ -147,6 +151,10 @@ int run(const render::Options& o) {
   if (counts.adaptive)
     shaded = counts.shaded[0] + counts.shaded[1] + counts.shaded[2] + counts.shaded[3];
   passTimes.print(indirect ? o.gi.vsglCount : 0, shaded);
+  if (o.shadowsFromModule)
+    std::printf(
+        "shadows: %u shadow views are the module's light views (%u^2), the rest the host's\n",
+        host.shadowedByModule(), render::shadowResolutionFor(o));
   // The effect planner's decisions for the last frame: what it left out, and why.
   if (indirect) {
     for (const std::string& reason : indirect->lastPlan().reasons)

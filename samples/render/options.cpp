@@ -36,6 +36,9 @@ const char* usage() {
          "  --shadow-res N       shadow-map texels per side, 16..4096 (default: from the image "
          "size)\n"
          "  --no-shadows         direct light without shadow maps\n"
+         "  --shadows own|module  the host's own shadow maps (default), or the module's light\n"
+         "                       views where it bounces the light, at the RSM's size\n"
+         "                       (docs/integration.md, \"The light's view\")\n"
          "  --exposure EV        fixed exposure in stops for the PNG (default: auto)\n"
          "  --device SEL         Vulkan device index or name substring (default: VSGL_DEVICE or "
          "auto)\n"
@@ -89,6 +92,7 @@ const char* usage() {
 }
 
 uint32_t shadowResolutionFor(const Options& o) {
+  if (o.shadowsFromModule) return o.gi.rsmSize;
   if (o.shadowResolution != 0) return o.shadowResolution;
   uint32_t half = std::max(o.width, o.height) / 2;
   uint32_t resolution = 256;
@@ -138,6 +142,9 @@ Options parseOptions(int argc, char** argv) {
       o.shadowResolution = parseUint(arg, args.value(), 16, 4096);
     else if (arg == "--no-shadows")
       o.shadows = false;
+    else if (arg == "--shadows")
+      o.shadowsFromModule =
+          parseChoice<bool>(arg, args.value(), {{"own", false}, {"module", true}});
     else if (arg == "--exposure")
       o.exposureEv = parseFloat(arg, args.value(), -64.0f, 64.0f);
     else if (arg == "--device")
@@ -233,6 +240,14 @@ Options parseOptions(int argc, char** argv) {
     throw engine::Error("--debug-vsgl: " + std::to_string(o.debugVsgl) + " is not below --count " +
                         std::to_string(o.gi.vsglCount));
   if (std::string bad = gi::validateSettings(o.gi); !bad.empty()) throw engine::Error(bad);
+  if (o.shadowsFromModule && o.shadowResolution != 0)
+    throw engine::Error(
+        "--shadow-res: with --shadows module the shadow maps are the RSM's size "
+        "(--rsm)");
+  if (o.shadowsFromModule && (!o.indirect || !o.shadows))
+    throw engine::Error(
+        "--shadows module: needs the module's light views and shadows (not with "
+        "--no-indirect or --no-shadows)");
   return o;
 }
 

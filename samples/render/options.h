@@ -23,6 +23,9 @@ struct Options {
   samples::Motion motion = samples::Motion::Static;
   uint32_t shadowResolution = 0;  // 0 = automatic: see shadowResolutionFor()
   bool shadows = true;
+  // The direct light's shadow maps are the module's light views (gi::FrameOutput::lightViews)
+  // where it has them, at the RSM's size: one triangle setup per light and frame.
+  bool shadowsFromModule = false;
   std::optional<float> exposureEv;
   std::string device;  // index or name substring (else VSGL_DEVICE, else automatic)
   bool validation = false;

@@ -111,6 +111,27 @@ TEST(LightSetup, ViewsPerLightType) {
   EXPECT_TRUE(engine::buildLightSetup(sceneWith(sun), {256, false}).views.empty());
 }
 
+// A shadow map given from elsewhere (the module's light view) gets the texel size the host's
+// own view of the same matrix has: 2 tan(half angle) / resolution per metre for a perspective
+// view, 2 half-extent / resolution for an orthographic one.
+TEST(LightSetup, GivenShadowViewHasTheTexelOfItsMatrix) {
+  engine::Light spot = downwardSpot();
+  engine::Light point = spot;
+  point.type = engine::LightType::Point;
+  engine::Light sun = spot;
+  sun.type = engine::LightType::Directional;
+  for (const engine::Light& light : {spot, point, sun}) {
+    const auto setup = engine::buildLightSetup(sceneWith(light), {256, true});
+    for (const gpu::ShadowView& own : setup.views) {
+      const gpu::ShadowView given = engine::givenShadowView(own.viewProj, 256);
+      EXPECT_EQ(given.viewProj, own.viewProj);
+      EXPECT_NEAR(given.texel.x, own.texel.x, 1e-5f * own.texel.x);
+      EXPECT_NEAR(given.texel.y, own.texel.y, 1e-5f * own.texel.y);
+      EXPECT_GT(given.texel.x + given.texel.y, 0.0f);
+    }
+  }
+}
+
 TEST(LightSetup, ShadowViewsSeeTheSceneAndSpotFalloffMatchesTheExtension) {
   auto setup = engine::buildLightSetup(sceneWith(downwardSpot()), {256, true});
   // The triangle below the spot projects inside the view and within the depth range.
