@@ -136,8 +136,10 @@ void DirectLighting::record(VkCommandBuffer cmd, const SceneGpu& scene, Rasteriz
     givenFor[m.view] = &m;
     views[m.view] = givenShadowView(m.viewProj, res);
   }
-  if (!given.empty() && !views.empty())
+  // The views' records change with the given maps, and return to the setup's after them.
+  if ((!given.empty() || viewsGiven_) && !views.empty())
     updateBuffer(cmd, views_, views.data(), views.size() * sizeof(gpu::ShadowView));
+  viewsGiven_ = !given.empty();
   for (size_t i = 0; i < views.size(); ++i) {
     ProfileScope scope(profiler, cmd, "shadow maps");
     if (givenFor[i]) {
@@ -149,9 +151,6 @@ void DirectLighting::record(VkCommandBuffer cmd, const SceneGpu& scene, Rasteriz
       rasterizer.record(cmd, scene, views[i].viewProj, {&shadowMaps_, i * mapBytes, res, res});
     }
   }
-  if (given.empty() && !views.empty() && viewsGiven_)
-    updateBuffer(cmd, views_, views.data(), views.size() * sizeof(gpu::ShadowView));
-  viewsGiven_ = !given.empty();
   ProfileScope scope(profiler, cmd, "direct light");
   gpu::DirectLightPush push{
       view.invViewProj, {g.width, g.height}, static_cast<uint32_t>(setup_.lights.size()), res};

@@ -34,7 +34,6 @@ HostFrame::HostFrame(engine::Context& ctx, const engine::Scene& scene, uint32_t 
       rasterizer_(ctx),
       resolve_(ctx),
       direct_(ctx, scene, direct),
-      shadowResolution_(direct.shadowResolution),
       gbuffer_(engine::createGBuffer(ctx, width, height)),
       visibility_(ctx, engine::Rasterizer::visibilityBytes(width, height),
                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly),
@@ -70,7 +69,8 @@ void HostFrame::recordDirectLight(VkCommandBuffer cmd, const engine::SceneGpu& s
     // (wider than one view holds) keeps its own maps.
     if (count == 0 || faces.size() != count) continue;
     bool usable = true;
-    for (const gi::LightViewOutput* f : faces) usable = usable && f->size == shadowResolution_;
+    for (const gi::LightViewOutput* f : faces)
+      usable = usable && f->size == direct_.shadowResolution();
     if (!usable) continue;
     for (const gi::LightViewOutput* f : faces)
       given.push_back({first + f->face, f->visibility, f->offset, f->viewProj});

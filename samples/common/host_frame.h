@@ -50,7 +50,6 @@ class HostFrame {
   engine::Rasterizer rasterizer_;
   engine::GBufferResolve resolve_;
   engine::DirectLighting direct_;
-  uint32_t shadowResolution_;
   engine::GBuffer gbuffer_;
   engine::Buffer visibility_;
   engine::Image radiance_;

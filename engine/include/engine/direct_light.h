@@ -57,6 +57,7 @@ class DirectLighting {
   // program is kept, so a host that moves a light each frame does not rebuild its pipeline.
   void setLights(Context& ctx, const Scene& scene);
   const LightSetup& setup() const { return setup_; }
+  uint32_t shadowResolution() const { return settings_.shadowResolution; }
 
  private:
   void upload(Context& ctx, const Scene& scene);
