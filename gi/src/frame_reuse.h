@@ -78,6 +78,13 @@ struct VsglInputs {
   bool operator==(const VsglInputs&) const = default;
 };
 
+// The ISM point positions: the geometry, and the VSGL count that says which points are used.
+struct IsmPositionInputs {
+  SceneInputs scene;
+  uint32_t vsglCount = 0;
+  bool operator==(const IsmPositionInputs&) const = default;
+};
+
 // The imperfect shadow maps: the VSGLs they are seen from and the geometry they hold.
 struct IsmInputs {
   VsglInputs vsgls;
@@ -111,6 +118,7 @@ struct LastInputs {
   std::optional<ImportanceInputs> importance;
   std::vector<std::optional<LightViewInputs>> views;  // by attribute pyramid
   std::optional<VsglInputs> vsgls;
+  std::optional<IsmPositionInputs> ismPositions;
   std::optional<IsmInputs> isms;
   std::optional<ShadingInputs> shading;
   std::optional<EnvironmentInputs> environment;

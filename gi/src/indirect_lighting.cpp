@@ -589,10 +589,16 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
   if (isms) {
     const IsmInputs ismIn{vsglIn, sceneIn};
     plan.reuse.isms = !evolving && last.isms == ismIn;
+    plan.reuse.ismPositions = plan.reuse.isms;
     if (!plan.reuse.isms) {
       if (ismPointsStale) ism.recordPoints(cmd, *scene, &profiler);
       ismPointsStale = false;
-      ism.recordBuild(cmd, *scene, *vsgls, settings.vsglCount, &profiler);
+      const IsmPositionInputs positionIn{sceneIn, settings.vsglCount};
+      plan.reuse.ismPositions = last.ismPositions == positionIn;
+      if (!plan.reuse.ismPositions) ism.recordPositions(cmd, *scene, settings.vsglCount, &profiler);
+      ism.recordSplat(cmd, *vsgls, settings.vsglCount, &profiler);
+      ism.recordPullPush(cmd, settings.vsglCount, &profiler);
+      last.ismPositions = positionIn;
       last.isms = ismIn;
     }
   }
@@ -655,7 +661,10 @@ std::vector<std::string> IndirectLighting::Impl::reuseReasons(const FrameInput& 
                       " of " + std::to_string(viewCount) +
                       " RSM views: their RSM, flux and attribute pyramids kept");
   }
-  if (r.isms) lines.push_back("reuse: VSGLs and geometry unchanged: ISMs kept");
+  if (r.isms)
+    lines.push_back("reuse: VSGLs and geometry unchanged: ISMs kept");
+  else if (r.ismPositions)
+    lines.push_back("reuse: geometry and VSGL count unchanged: ISM point positions kept");
   if (r.shading)
     lines.push_back("reuse: nothing the shading reads changed: outputs kept (no shading pass)");
   if (r.environment) lines.push_back("reuse: G-buffer and environment unchanged: its outputs kept");

@@ -217,14 +217,14 @@ class FrameReuseTest : public testing_gpu::GpuTest {
           << a[i].first << " differs with reuse on and off";
     }
     const gi::FramePlan::Reuse& r = t.on->lastPlan().reuse;
-    const bool any = r.gbuffer || r.importance || r.lightViews > 0 || r.vsgls || r.isms ||
-                     r.shading || r.environment;
+    const bool any = r.gbuffer || r.importance || r.lightViews > 0 || r.vsgls || r.ismPositions ||
+                     r.isms || r.shading || r.environment;
     t.framesWithReuse += any;
     t.framesKeepingEverything += r.shading && (!on.environmentDiffuse.image || r.environment);
     ++t.frames;
     const gi::FramePlan::Reuse& none = t.off->lastPlan().reuse;
     EXPECT_FALSE(none.gbuffer || none.importance || none.lightViews > 0 || none.vsgls ||
-                 none.isms || none.shading || none.environment)
+                 none.ismPositions || none.isms || none.shading || none.environment)
         << "the instance without reuse kept work";
   }
 };
@@ -284,6 +284,11 @@ TEST_F(FrameReuseTest, EveryMotionAndMethodEqualsNoReuse) {
         }
         if (motion == samples::Motion::Orbit && frame > 0) {
           EXPECT_EQ(t.on->lastPlan().reuse.lightViews, 1u) << m.name << ": orbit keeps the RSM";
+          // The ISMs follow the VSGLs, but their points' positions only the geometry.
+          EXPECT_TRUE(t.on->lastPlan().reuse.ismPositions) << m.name;
+        }
+        if (motion == samples::Motion::Move) {
+          EXPECT_FALSE(t.on->lastPlan().reuse.ismPositions) << m.name << ": a new scene";
         }
       }
     }

@@ -265,7 +265,8 @@ TEST_F(IsmTest, SplatAndPullPushMatchTheReference) {
   gi::Ism ism(ctx(), settings, vsglCount());
   ctx().submitAndWait([&](VkCommandBuffer cmd) {
     ism.recordPoints(cmd, *gpuScene_);
-    ism.recordSplat(cmd, *gpuScene_, *vsgls_, vsglCount());
+    ism.recordPositions(cmd, *gpuScene_, vsglCount());
+    ism.recordSplat(cmd, *vsgls_, vsglCount());
   });
   const auto points = ism.points().readbackAs<gpu::IsmPoint>(ctx());
   const auto raw = toReferenceAtlas(atlasBits(ism));
@@ -424,7 +425,8 @@ TEST_F(IsmTest, PointsFollowMovingGeometry) {
   gi::Ism ism(ctx(), settings, vsglCount());
   ctx().submitAndWait([&](VkCommandBuffer cmd) {
     ism.recordPoints(cmd, *gpuScene_);
-    ism.recordSplat(cmd, *gpuScene_, *vsgls_, vsglCount());
+    ism.recordPositions(cmd, *gpuScene_, vsglCount());
+    ism.recordSplat(cmd, *vsgls_, vsglCount());
   });
   const auto points = ism.points().readbackAs<gpu::IsmPoint>(ctx());
   const auto before = toReferenceAtlas(atlasBits(ism));
@@ -436,7 +438,8 @@ TEST_F(IsmTest, PointsFollowMovingGeometry) {
   for (gpu::SceneVertex& v : vertices) v.positionU += glm::vec4(shift, 0.0f);
   gpuScene_->vertices.upload(ctx(), std::span<const gpu::SceneVertex>(vertices));
   ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    ism.recordSplat(cmd, *gpuScene_, *vsgls_, vsglCount());  // no recordPoints
+    ism.recordPositions(cmd, *gpuScene_, vsglCount());  // no recordPoints
+    ism.recordSplat(cmd, *vsgls_, vsglCount());
   });
   const auto after = toReferenceAtlas(atlasBits(ism));
   const auto ref = gi::ismSplatReference(moved, scene_.indices, points, vsglData_, settings.mapSize,

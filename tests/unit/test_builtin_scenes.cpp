@@ -357,7 +357,7 @@ TEST(BuiltinScenes, DefaultCameraFramesTheBounds) {
   EXPECT_LE(std::asin(radius / glm::length(centre - eye)), 0.5f * camera.yfov + 1e-5f);
 }
 
-// The generated scenes of the scaling measurements: the Cornell box plus about N sphere
+// The generated scenes of the scaling measurements: the matte Cornell box plus about N sphere
 // triangles (within 1 %: a whole number of stacks; far below 10 000 the smallest sphere, 8 x 16,
 // is larger), in the spot's cone or, for the "outside" variant, 90 % of them above the ceiling
 // (y > 2 m) where the downward spot cannot reach.
@@ -382,6 +382,9 @@ TEST(BuiltinScenes, GeneratedSphereRooms) {
     const double share = double(above) / double(outside.triangleCount() - cornell.triangleCount());
     EXPECT_NEAR(share, 0.9, 0.02) << n;
     EXPECT_EQ(inside.lights.size(), 1u);
+    for (const engine::Scene* scene : {&inside, &outside})
+      for (const engine::Material& m : scene->materials)
+        EXPECT_EQ(m.specularFactor, 0.0f) << m.name << ": the generated rooms are matte";
     EXPECT_EQ(inside.source, "builtin:sphere-room:" + std::to_string(n));
     EXPECT_TRUE(engine::isGeneratedSceneName("sphere-room:" + std::to_string(n)));
   }

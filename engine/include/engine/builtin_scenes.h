@@ -13,8 +13,9 @@
 //            of each type: a warm point light (a lamp), a cool and a red-orange ceiling spot,
 //            and a sun through a window in the left wall. The built-in many-lights case.
 // Generated scenes for scaling measurements (not in builtinSceneNames()):
-//   sphere-room:N          the Cornell box with a white UV sphere of about N triangles on the
-//                          floor, in the spot's cone (N in [1000, 16000000]).
+//   sphere-room:N          the Cornell box, matte (no surface has a specular lobe), with a
+//                          white UV sphere of about N triangles on the floor, in the spot's
+//                          cone (N in [1000, 16000000]).
 //   sphere-room-outside:N  the same N, a tenth on the floor and the rest in a sphere above the
 //                          ceiling, outside the spot's cone and the camera's view.
 #pragma once

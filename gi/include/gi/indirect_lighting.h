@@ -272,13 +272,14 @@ struct FramePlan {
   // Reuse across frames (Settings::reuse): what this frame kept from the frame that last
   // computed it instead of recording its passes again. Nothing reused when all are false/0.
   struct Reuse {
-    bool gbuffer = false;      // the converted G-buffer (depth and normal encodings)
-    bool importance = false;   // BRSM stage A's importance VSGLs
-    uint32_t lightViews = 0;   // RSM views whose RSM, flux and attribute pyramids were kept
-    bool vsgls = false;        // the VSGLs, with their PDF and allocation
-    bool isms = false;         // the imperfect shadow maps
-    bool shading = false;      // the outputs (indirect images, levels, debug visibility)
-    bool environment = false;  // the environment's outputs
+    bool gbuffer = false;       // the converted G-buffer (depth and normal encodings)
+    bool importance = false;    // BRSM stage A's importance VSGLs
+    uint32_t lightViews = 0;    // RSM views whose RSM, flux and attribute pyramids were kept
+    bool vsgls = false;         // the VSGLs, with their PDF and allocation
+    bool ismPositions = false;  // the ISM points' positions (kept with the ISMs, or alone)
+    bool isms = false;          // the imperfect shadow maps
+    bool shading = false;       // the outputs (indirect images, levels, debug visibility)
+    bool environment = false;   // the environment's outputs
     // One line per stage kept and why, or why a host gets no reuse (e.g. no generation numbers).
     std::vector<std::string> reasons;
   } reuse;

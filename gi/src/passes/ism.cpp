@@ -78,9 +78,9 @@ Ism::Ism(engine::Context& ctx, const IsmSettings& settings, uint32_t maxVsgls)
     const uint32_t specialization[] = {alphaTest};
     std::vector<VkDescriptorType> bindings = buffers(6);
     bindings.push_back(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-    pointsPrograms_[alphaTest] = engine::ComputeProgram(
-        ctx, alphaTest ? "ism_points (alpha test)" : "ism_points", kIsmPointsSpv, bindings,
-        sizeof(gpu::IsmPointsPush), specialization);
+    pointsPrograms_[alphaTest] =
+        engine::ComputeProgram(ctx, alphaTest ? "ism_points (alpha test)" : "ism_points",
+                               kIsmPointsSpv, bindings, sizeof(gpu::IsmPointsPush), specialization);
   }
   positionsProgram_ =
       engine::ComputeProgram(ctx, "ism_positions", kIsmPositionsSpv,
@@ -173,42 +173,55 @@ void Ism::recordPoints(VkCommandBuffer cmd, const engine::SceneGpu& scene,
   engine::computeBarrier(cmd);
 }
 
+void Ism::checkCount(uint32_t vsglCount) const {
+  if (vsglCount > maxVsgls_)
+    throw engine::Error("ISM vsglCount " + std::to_string(vsglCount) + " exceeds the " +
+                        std::to_string(maxVsgls_) + " the atlas was made for");
+}
+
 void Ism::recordBuild(VkCommandBuffer cmd, const engine::SceneGpu& scene,
                       const engine::Buffer& vsgls, uint32_t vsglCount,
                       engine::GpuProfiler* profiler) {
-  recordSplat(cmd, scene, vsgls, vsglCount, profiler);
+  recordPositions(cmd, scene, vsglCount, profiler);
+  recordSplat(cmd, vsgls, vsglCount, profiler);
   recordPullPush(cmd, vsglCount, profiler);
 }
 
-void Ism::recordSplat(VkCommandBuffer cmd, const engine::SceneGpu& scene,
-                      const engine::Buffer& vsgls, uint32_t vsglCount,
-                      engine::GpuProfiler* profiler) {
+void Ism::recordPositions(VkCommandBuffer cmd, const engine::SceneGpu& scene, uint32_t vsglCount,
+                          engine::GpuProfiler* profiler) {
   using engine::Binding;
   if (!pointsRecorded_)
-    throw engine::Error("ISM: recordBuild before recordPoints (the point pool is not generated)");
+    throw engine::Error(
+        "ISM: recordPositions before recordPoints (the point pool is not generated)");
   if (scene.triangleCount != pointsTriangleCount_)
     throw engine::Error("ISM: the scene has " + std::to_string(scene.triangleCount) +
                         " triangles but the points were made for " +
                         std::to_string(pointsTriangleCount_) +
                         " (call recordPoints after a scene change)");
-  if (vsglCount > maxVsgls_)
-    throw engine::Error("ISM vsglCount " + std::to_string(vsglCount) + " exceeds the " +
-                        std::to_string(maxVsgls_) + " the atlas was made for");
+  checkCount(vsglCount);
+  if (vsglCount == 0) return;
+  const uint32_t m = settings_.pointsPerVsgl;
+  const uint32_t stride = settings_.pointCount / m;
+  engine::ProfileScope scope(profiler, cmd, "ism positions");
+  const gpu::IsmPositionsPush push{m, stride, std::min(vsglCount, stride), 0};
+  positionsProgram_.dispatch(cmd,
+                             {Binding::storage(points_), Binding::storage(scene.vertices),
+                              Binding::storage(scene.indices), Binding::storageImage(positions_)},
+                             push, engine::groupCount(m, ISM_GROUP_SIZE), push.classCount);
+  engine::computeBarrier(cmd);  // the splat reads them
+}
+
+void Ism::recordSplat(VkCommandBuffer cmd, const engine::Buffer& vsgls, uint32_t vsglCount,
+                      engine::GpuProfiler* profiler) {
+  using engine::Binding;
+  checkCount(vsglCount);
   if (vsgls.size() < VkDeviceSize{vsglCount} * sizeof(gpu::Vsgl))
     throw engine::Error("ISM vsglCount " + std::to_string(vsglCount) + " exceeds the VSGL buffer");
   if (vsglCount == 0) return;
   const uint32_t m = settings_.pointsPerVsgl;
   const uint32_t stride = settings_.pointCount / m;
-  {
-    engine::ProfileScope scope(profiler, cmd, "ism positions");
-    const gpu::IsmPositionsPush push{m, stride, std::min(vsglCount, stride), 0};
-    positionsProgram_.dispatch(cmd,
-                               {Binding::storage(points_), Binding::storage(scene.vertices),
-                                Binding::storage(scene.indices), Binding::storageImage(positions_)},
-                               push, engine::groupCount(m, ISM_GROUP_SIZE), push.classCount);
-  }
   engine::ProfileScope scope(profiler, cmd, "ism splat");
-  // A full barrier (earlier reads of the atlas, the positions just written) around the clear.
+  // Barriers around the clear: earlier reads of the atlas, then the splat's writes.
   engine::imageBarrier(cmd, atlas_, VK_IMAGE_LAYOUT_GENERAL);
   VkClearColorValue empty{};
   empty.uint32[0] = ISM_EMPTY;
@@ -228,9 +241,7 @@ void Ism::recordSplat(VkCommandBuffer cmd, const engine::SceneGpu& scene,
 
 void Ism::recordPullPush(VkCommandBuffer cmd, uint32_t vsglCount, engine::GpuProfiler* profiler) {
   using engine::Binding;
-  if (vsglCount > maxVsgls_)
-    throw engine::Error("ISM vsglCount " + std::to_string(vsglCount) + " exceeds the " +
-                        std::to_string(maxVsgls_) + " the atlas was made for");
+  checkCount(vsglCount);
   if (vsglCount == 0) return;
   engine::ProfileScope scope(profiler, cmd, "ism pull-push");
   const auto levels = static_cast<uint32_t>(std::countr_zero(settings_.mapSize));

@@ -2,9 +2,10 @@
 // passes in shaders/shared/ism.h, design and measurements in docs/techniques/ism.md).
 //   recordPoints (scene change): an area-proportional pool of surface points as (triangle,
 //     barycentrics), generated on the GPU from the scene buffers: "ism points".
-//   recordBuild (every frame): the pool points' positions from the current vertex buffer, one
-//     paraboloid depth map per VSGL splatted into one atlas, pull-push hole filling: "ism
-//     positions", "ism splat", "ism pull-push".
+//   recordBuild (every frame): the pool points' positions from the current vertex buffer
+//     (recordPositions, "ism positions": it depends on the geometry and the VSGL count only, so
+//     the module keeps it while they stay), one paraboloid depth map per VSGL splatted into one
+//     atlas, pull-push hole filling: "ism splat", "ism pull-push".
 //   Shading passes include shaders/common/ism_lookup.glsl, bind atlas() and pass params().
 // Everything is recorded into the caller's command buffer; nothing here submits or waits.
 #pragma once
@@ -39,14 +40,19 @@ class Ism {
                     engine::GpuProfiler* profiler = nullptr);
 
   // Builds the maps of the first `vsglCount` records of `vsgls` (gpu::Vsgl) with the current
-  // vertex positions of `scene` (same topology as at recordPoints): recordSplat, then
-  // recordPullPush.
+  // vertex positions of `scene` (same topology as at recordPoints): recordPositions,
+  // recordSplat, then recordPullPush.
   void recordBuild(VkCommandBuffer cmd, const engine::SceneGpu& scene, const engine::Buffer& vsgls,
                    uint32_t vsglCount, engine::GpuProfiler* profiler = nullptr);
-  // The two halves of recordBuild, separately for tests: after recordSplat level 0 of the
-  // atlas holds the raw splats (ISM_EMPTY where no point landed).
-  void recordSplat(VkCommandBuffer cmd, const engine::SceneGpu& scene, const engine::Buffer& vsgls,
-                   uint32_t vsglCount, engine::GpuProfiler* profiler = nullptr);
+  // The parts of recordBuild. recordPositions writes positions() for `vsglCount` VSGLs' point
+  // subsets from the current vertex buffer; recordSplat reads them, so it needs a
+  // recordPositions for the same geometry and count before it (in this frame or an earlier
+  // one). After recordSplat level 0 of the atlas holds the raw splats (ISM_EMPTY where no
+  // point landed).
+  void recordPositions(VkCommandBuffer cmd, const engine::SceneGpu& scene, uint32_t vsglCount,
+                       engine::GpuProfiler* profiler = nullptr);
+  void recordSplat(VkCommandBuffer cmd, const engine::Buffer& vsgls, uint32_t vsglCount,
+                   engine::GpuProfiler* profiler = nullptr);
   void recordPullPush(VkCommandBuffer cmd, uint32_t vsglCount,
                       engine::GpuProfiler* profiler = nullptr);
 
@@ -75,6 +81,8 @@ class Ism {
   uint32_t maxVsgls() const { return maxVsgls_; }
 
  private:
+  void checkCount(uint32_t vsglCount) const;  // throws unless vsglCount <= maxVsgls()
+
   engine::Context& ctx_;
   IsmSettings settings_;
   uint32_t maxVsgls_;
