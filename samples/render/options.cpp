@@ -21,7 +21,7 @@ const char* usage() {
          "(default "
          "cornell);\n"
          "                       sphere-room:N and sphere-room-outside:N add N sphere triangles\n"
-         "                       to the Cornell box (engine/builtin_scenes.h)\n"
+         "                       to a matte Cornell box (engine/builtin_scenes.h)\n"
          "  --out DIR            output directory (default out)\n"
          "  --width N --height N image size in pixels, 1..8192 (default 640x360)\n"
          "  --frames N           measured frames, 1..1000 (default 3)\n"
