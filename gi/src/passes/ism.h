@@ -2,10 +2,10 @@
 // passes in shaders/shared/ism.h, design and measurements in docs/techniques/ism.md).
 //   recordPoints (scene change): an area-proportional pool of surface points as (triangle,
 //     barycentrics), generated on the GPU from the scene buffers: "ism points".
-//   recordBuild (every frame): the pool points' positions from the current vertex buffer
-//     (recordPositions, "ism positions": it depends on the geometry and the VSGL count only, so
-//     the module keeps it while they stay), one paraboloid depth map per VSGL splatted into one
-//     atlas, pull-push hole filling: "ism splat", "ism pull-push".
+//   recordPositions (geometry or VSGL count change): the pool points' positions from the
+//     current vertex buffer: "ism positions".
+//   recordSplat, recordPullPush (new VSGLs): one paraboloid depth map per VSGL splatted into one
+//     atlas, pull-push hole filling: "ism splat", "ism pull-push". recordBuild runs all three.
 //   Shading passes include shaders/common/ism_lookup.glsl, bind atlas() and pass params().
 // Everything is recorded into the caller's command buffer; nothing here submits or waits.
 #pragma once
