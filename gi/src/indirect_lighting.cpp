@@ -563,7 +563,8 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
       // BRSM's PDF is written over the pyramids' PDF channel from their power channels, which
       // it leaves as they are: it can run again on kept pyramids.
       if (brsm)
-        brsmPdf->record(cmd, pyramids, view, importance->vsgls(), settings.brsm, mips, &profiler);
+        brsmPdf->record(cmd, pyramids, view, importance->vsgls(), settings.brsm, mips, &profiler,
+                        plan.specularLobes);
       if (shared) {
         allocation.recordWeight(cmd, v, pyramids, brsm ? &brsmPdf->cells() : nullptr);
       } else {

@@ -3,6 +3,12 @@
 // lobes reflect toward the camera, from the importance VSGLs. One thread per cell; the loop over
 // importance VSGLs is the cost (cells x importance VSGLs x 2 x 2 SG inner products). The CPU
 // twin is gi/src/reference/brsm_reference.cpp.
+//
+// Without specular lobes (kSpecular off: the planner's choice for a scene where no surface has a
+// specular lobe, whose specular pyramids are then all zero) the importance VSGLs' specular lobes
+// carry no power and no texel has glossy weight, so only the diffuse lobes are read and only I_d
+// is evaluated: a quarter of the inner products, the same I_d and PDF to the bit (the dropped
+// terms were exact zeros), and I_s = 0.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/brsm.h"
@@ -23,11 +29,13 @@ layout(binding = VSGL_ATTR_SPECULAR_AXIS, rgba32f) uniform readonly image2D spec
 layout(std430, binding = VSGL_ATTR_COUNT) readonly buffer Importance { Vsgl importance[]; };
 layout(binding = VSGL_ATTR_COUNT + 1, rgba32f) uniform writeonly image2D outCells;
 layout(push_constant) uniform Push { BrsmEvaluatePush pc; };
+layout(constant_id = 0) const bool kSpecular = true;
 
 // A tile of importance lobes in shared memory, with the per-lobe constants of the incoming SG
 // (section 4.1) computed once per tile instead of once per cell: every cell of the group reads
 // the same lobes (measured on lavapipe: 350 -> 290 ms at 64^2 cells x 2048 VSGLs).
-const uint kTile = BRSM_GROUP_X * BRSM_GROUP_Y;  // VSGLs per tile, 2 lobes each
+const uint kTile = BRSM_GROUP_X * BRSM_GROUP_Y;  // VSGLs per tile
+const uint kLobesPerVsgl = kSpecular ? 2u : 1u;
 shared vec4 tileMeanVariance[2 * kTile];
 shared vec4 tileAxisSharpness[2 * kTile];
 // log(power / (2 pi S(sharpness))); -inf for a lobe without power, whose terms are then exp(-inf) = 0.
@@ -69,15 +77,16 @@ void main() {
   vec2 sums = vec2(0.0);
   for (uint base = 0u; base < pc.importanceCount; base += kTile) {
     uint k = base + gl_LocalInvocationIndex;
+    uint slot = kLobesPerVsgl * gl_LocalInvocationIndex;
     if (k < pc.importanceCount) {
-      loadLobe(2u * gl_LocalInvocationIndex, importance[k].diffuse);
-      loadLobe(2u * gl_LocalInvocationIndex + 1u, importance[k].specular);
+      loadLobe(slot, importance[k].diffuse);
+      if (kSpecular) loadLobe(slot + 1u, importance[k].specular);
     } else {
-      tileLogScale[2u * gl_LocalInvocationIndex] = -1.0 / 0.0;
-      tileLogScale[2u * gl_LocalInvocationIndex + 1u] = -1.0 / 0.0;
+      tileLogScale[slot] = -1.0 / 0.0;
+      if (kSpecular) tileLogScale[slot + 1u] = -1.0 / 0.0;
     }
     barrier();
-    uint lobes = 2u * min(kTile, pc.importanceCount - base);
+    uint lobes = kLobesPerVsgl * min(kTile, pc.importanceCount - base);
     if (lit) {
       for (uint j = 0u; j < lobes; ++j) {
         vec4 meanVariance = tileMeanVariance[j];
@@ -86,7 +95,7 @@ void main() {
                                            axisSharpness.w, tileLogScale[j], receiver,
                                            vec4(0.0, 0.0, 0.0, 1.0));
         sums.x += sgInnerProduct(incoming, diffuseLobe, diffuseLogNorm);
-        sums.y += sgInnerProduct(incoming, glossyLobe, glossyLogNorm);
+        if (kSpecular) sums.y += sgInnerProduct(incoming, glossyLobe, glossyLogNorm);
       }
     }
     barrier();

@@ -3,6 +3,10 @@
 // Every VPL contributes its diffuse and its glossy lobe as weighted sums (vsgl-math.md 3.2):
 // power, w y, w |y|^2 and w r xi, with w = luminance of the lobe's power. The CPU twin is
 // gi/src/reference/vsgl_attributes_reference.cpp.
+//
+// kSpecular off (no surface has a specular lobe: VsglAttributes keeps the specular pyramids
+// zero) skips the glossy lobe and leaves the specular images unwritten; the diffuse images are
+// the same to the bit (their specular weight was an exact 0).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/vsgl.h"
@@ -26,6 +30,7 @@ layout(binding = 4 + VSGL_ATTR_SPECULAR_POWER, rgba32f) uniform writeonly image2
 layout(binding = 4 + VSGL_ATTR_SPECULAR_POSITION, rgba32f) uniform writeonly image2D outSpecularPosition;
 layout(binding = 4 + VSGL_ATTR_SPECULAR_AXIS, rgba32f) uniform writeonly image2D outSpecularAxis;
 layout(push_constant) uniform Push { VsglAttributesPush pc; };
+layout(constant_id = 0) const bool kSpecular = true;
 
 bool finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
@@ -46,22 +51,26 @@ void main() {
     float yy = dot(y, y);
     vec3 toLight = pc.perspective != 0u ? -normalize(y) : -pc.axis.xyz;
     float wd = luminance(diffuse.rgb);
-    float ws = luminance(specular.rgb);
-    vec3 specAxis;
-    float specSharpness;
-    vplSpecularLobe(n, toLight, specular.a, specAxis, specSharpness);
-    float rs = banerjeeMeanLength(specSharpness);
+    float ws = kSpecular ? luminance(specular.rgb) : 0.0;
     out_[VSGL_ATTR_DIFFUSE_POWER] = vec4(diffuse.rgb, wd);
     out_[VSGL_ATTR_DIFFUSE_POSITION] = vec4(wd * y, wd * yy);
     out_[VSGL_ATTR_DIFFUSE_AXIS] = vec4(wd * float(VSGL_DIFFUSE_LOBE_LENGTH) * n, wd + ws);
-    out_[VSGL_ATTR_SPECULAR_POWER] = vec4(specular.rgb, ws);
-    out_[VSGL_ATTR_SPECULAR_POSITION] = vec4(ws * y, ws * yy);
-    out_[VSGL_ATTR_SPECULAR_AXIS] = vec4(ws * rs * specAxis, 0.0);
+    if (kSpecular) {
+      vec3 specAxis;
+      float specSharpness;
+      vplSpecularLobe(n, toLight, specular.a, specAxis, specSharpness);
+      float rs = banerjeeMeanLength(specSharpness);
+      out_[VSGL_ATTR_SPECULAR_POWER] = vec4(specular.rgb, ws);
+      out_[VSGL_ATTR_SPECULAR_POSITION] = vec4(ws * y, ws * yy);
+      out_[VSGL_ATTR_SPECULAR_AXIS] = vec4(ws * rs * specAxis, 0.0);
+    }
   }
   imageStore(outDiffusePower, coord, out_[VSGL_ATTR_DIFFUSE_POWER]);
   imageStore(outDiffusePosition, coord, out_[VSGL_ATTR_DIFFUSE_POSITION]);
   imageStore(outDiffuseAxis, coord, out_[VSGL_ATTR_DIFFUSE_AXIS]);
-  imageStore(outSpecularPower, coord, out_[VSGL_ATTR_SPECULAR_POWER]);
-  imageStore(outSpecularPosition, coord, out_[VSGL_ATTR_SPECULAR_POSITION]);
-  imageStore(outSpecularAxis, coord, out_[VSGL_ATTR_SPECULAR_AXIS]);
+  if (kSpecular) {
+    imageStore(outSpecularPower, coord, out_[VSGL_ATTR_SPECULAR_POWER]);
+    imageStore(outSpecularPosition, coord, out_[VSGL_ATTR_SPECULAR_POSITION]);
+    imageStore(outSpecularAxis, coord, out_[VSGL_ATTR_SPECULAR_AXIS]);
+  }
 }

@@ -45,13 +45,17 @@ class BrsmPdfTest : public testing_gpu::GpuTest {
     });
   }
 
-  // The light's pyramids, freshly built (flux PDF), then stage B with `importance`.
+  // The light's pyramids, freshly built (flux PDF), then stage B with `importance`. `specular`
+  // false builds them without specular lobes (all zero); `evaluateSpecular` false evaluates
+  // without them.
   void runBrsm(gi::BrsmPdf& brsm, const engine::Buffer& importance,
-               const gi::BrsmSettings& settings) {
+               const gi::BrsmSettings& settings, bool specular = true,
+               bool evaluateSpecular = true) {
     ctx().submitAndWait([&](VkCommandBuffer cmd) {
       rsm_->record(cmd, *gpuScene_, *rasterizer_, *resolve_, view_, light_);
-      attributes_->record(cmd, rsm_->vpls(), rsm_->surface(), view_, *mips_);
-      brsm.record(cmd, *attributes_, view_, importance, settings, *mips_);
+      attributes_->record(cmd, rsm_->vpls(), rsm_->surface(), view_, *mips_, nullptr, specular);
+      brsm.record(cmd, *attributes_, view_, importance, settings, *mips_, nullptr,
+                  evaluateSpecular);
     });
   }
 
@@ -125,6 +129,48 @@ TEST_F(BrsmPdfTest, CellsAndPdfMatchTheReference) {
     for (size_t i = 0; i < pdf.size(); ++i)
       ASSERT_NEAR(pdf[i], pdfRef[i], 4e-4 * pdfRef[i] + 1e-7) << "grid " << grid << " texel " << i;
   }
+}
+
+// Without specular lobes (the planner's choice when no surface has one: the light's and the
+// camera's specular pyramids are all zero) the pass reads only the diffuse lobes. It must match
+// its twin, leave I_s = 0, and change nothing else: I_d, the cell means and the PDF are those of
+// the full pass on the same inputs to the bit, since every term it drops is an exact zero.
+TEST_F(BrsmPdfTest, WithoutSpecularLobesOnlyTheDiffuseImportanceIsEvaluated) {
+  const gi::VsglSettings rule{kImportance, 1.0f, VSGL_RULE_MODIFIED};
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    importance_->record(cmd, *gbuffer_, cameraView_, rule, *mips_, nullptr, false);
+  });
+  const auto importance = importance_->vsgls().readbackAs<gpu::Vsgl>(ctx());
+  size_t powered = 0;
+  for (const gpu::Vsgl& v : importance) {
+    ASSERT_EQ(v.specular.power.a, 0.0f) << "the premise: no specular importance";
+    powered += v.diffuse.power.a > 0.0f;
+  }
+  ASSERT_GT(powered, kImportance / 2);
+  const gi::BrsmSettings settings{kImportance, 16, 0.1f};
+  gi::BrsmPdf brsm(ctx(), kRsm, settings.gridSize);
+  runBrsm(brsm, importance_->vsgls(), settings, false, true);
+  const auto fullCells = brsm.cells().readbackRgba32f(ctx(), 0);
+  const auto fullPdf = gpuPdf();
+  runBrsm(brsm, importance_->vsgls(), settings, false, false);
+  const auto cells = brsm.cells().readbackRgba32f(ctx(), 0);
+  const auto pdf = gpuPdf();
+  const auto ref =
+      gi::brsmCellsReference(readLight(), view_.origin, importance, settings.gridSize, false);
+  double largest = 0.0;
+  for (const glm::dvec4& c : ref) largest = std::max(largest, c.r);
+  size_t lit = 0;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    ASSERT_EQ(cells[i].r, fullCells[i].r) << "cell " << i;
+    ASSERT_EQ(cells[i].b, fullCells[i].b) << "cell " << i;
+    ASSERT_EQ(cells[i].g, 0.0f) << "cell " << i;
+    ASSERT_EQ(ref[i].g, 0.0) << "cell " << i;
+    // The tolerance of CellsAndPdfMatchTheReference.
+    ASSERT_NEAR(cells[i].r, ref[i].r, 2e-4 * ref[i].r + 1e-6 * largest) << "cell " << i;
+    lit += ref[i].r > 0.0;
+  }
+  ASSERT_GT(lit, cells.size() / 8) << "the spot lights too few cells for a meaningful test";
+  for (size_t i = 0; i < pdf.size(); ++i) ASSERT_EQ(pdf[i], fullPdf[i]) << "texel " << i;
 }
 
 // Every texel with power keeps at least the flux share e w / mean_w; texels without power get

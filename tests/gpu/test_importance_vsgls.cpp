@@ -94,4 +94,98 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
   EXPECT_NEAR(total, importanceSum, 0.02 * importanceSum);
 }
 
+// The pyramids reduce only the source's region (MipPyramid's extent form) and keep the
+// padding zero by clearing it when the extent changes; without specular lobes the specular
+// pyramids are cleared once and left alone. Checked across a sequence that breaks either rule
+// if its state were kept wrong: the glossy box padded, full size (which writes the padding),
+// padded again (specular pyramids not zero), then the matte box padded twice without specular
+// lobes (the first clears them, the second not) and once with them, and the glossy box again.
+// After each frame the padding must be zero at every level, every level what a reduction of the
+// whole image writes, to the bit, without specular lobes the specular pyramids zero, and the
+// matte box's diffuse pyramids the same with and without them.
+TEST_F(ImportanceVsgls, PyramidsStayExactAcrossExtentAndSpecularChanges) {
+  const uint32_t pyramidSize = 128;
+  const engine::Scene glossy = engine::makeBuiltinScene("cornell");
+  const engine::Scene matte = [&] {
+    engine::Scene scene = glossy;
+    for (engine::Material& m : scene.materials) m.specularFactor = 0.0f;  // ws = 0
+    return scene;
+  }();
+  engine::Rasterizer rasterizer(ctx());
+  engine::GBufferResolve resolve(ctx());
+  gi::FluxPass flux(ctx());
+  gi::MipPyramid mips(ctx());
+  gi::VsglAttributes attributes(ctx(), pyramidSize);
+  struct Source {
+    uint32_t width, height;
+    engine::View view;
+    engine::GBuffer gbuffer;
+    gi::VplImages vpls;
+  };
+  // 0, 1: the glossy box padded and full size; 2: the matte box padded.
+  std::vector<Source> sources;
+  for (auto [scene, size] :
+       {std::pair{&glossy, glm::uvec2(96, 64)}, std::pair{&glossy, glm::uvec2(pyramidSize)},
+        std::pair{&matte, glm::uvec2(96, 64)}}) {
+    engine::SceneGpu gpuScene = engine::uploadScene(ctx(), *scene);
+    engine::View view = engine::cameraView(scene->cameras.at(0), size.x, size.y);
+    Source source{size.x, size.y, view, engine::createGBuffer(ctx(), size.x, size.y),
+                  gi::createVplImages(ctx(), size.x, size.y)};
+    engine::Buffer visibility(ctx(), engine::Rasterizer::visibilityBytes(size.x, size.y),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::GpuOnly);
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      rasterizer.record(cmd, gpuScene, view.viewProj, {&visibility, 0, size.x, size.y});
+      resolve.record(cmd, gpuScene, visibility, view, source.gbuffer);
+      flux.record(cmd, source.gbuffer, gi::cameraImportanceView(view), gi::FluxSource{},
+                  source.vpls);
+    });
+    sources.push_back(std::move(source));
+  }
+  auto levels = [&](int a) {
+    std::vector<std::vector<glm::vec4>> l;
+    for (uint32_t level = 0; pyramidSize >> level >= 1; ++level)
+      l.push_back(attributes.pyramid(a).readbackRgba32f(ctx(), level));
+    return l;
+  };
+  std::vector<std::vector<std::vector<glm::vec4>>> matteDiffuse;  // per attribute, level
+  double glossyPower = 0.0;  // the glossy box's mean specular weight: the premise
+  const struct {
+    size_t source;
+    bool specular;
+  } frames[] = {{0, true}, {1, true}, {0, true}, {2, false}, {2, false}, {2, true}, {0, true}};
+  for (size_t f = 0; f < std::size(frames); ++f) {
+    Source& source = sources[frames[f].source];
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      attributes.record(cmd, source.vpls, source.gbuffer, gi::cameraImportanceView(source.view),
+                        mips, nullptr, frames[f].specular);
+    });
+    for (int a = 0; a < VSGL_ATTR_COUNT; ++a) {
+      const auto gpu = levels(a);
+      for (size_t level = 0; level < gpu.size(); ++level) {
+        const uint32_t size = pyramidSize >> level;
+        const uint32_t w = (source.width + (1u << level) - 1) >> level;
+        const uint32_t h = (source.height + (1u << level) - 1) >> level;
+        for (uint32_t y = 0; y < size; ++y)
+          for (uint32_t x = 0; x < size; ++x)
+            if (x >= w || y >= h || (!frames[f].specular && a >= VSGL_ATTR_SPECULAR_POWER))
+              ASSERT_EQ(gpu[level][size_t{y} * size + x], glm::vec4(0.0f))
+                  << "frame " << f << " attribute " << a << " level " << level << " texel " << x
+                  << ", " << y;
+      }
+      // The reduction of the whole image, in place, must change nothing.
+      ctx().submitAndWait([&](VkCommandBuffer cmd) { mips.record(cmd, attributes.pyramid(a)); });
+      ASSERT_EQ(levels(a), gpu) << "frame " << f << " attribute " << a;
+      if (frames[f].source == 2 && a < VSGL_ATTR_SPECULAR_POWER) {
+        if (matteDiffuse.size() < VSGL_ATTR_SPECULAR_POWER)
+          matteDiffuse.push_back(gpu);
+        else
+          ASSERT_EQ(gpu, matteDiffuse[a]) << "frame " << f << " attribute " << a;
+      }
+      if (frames[f].source == 0 && a == VSGL_ATTR_SPECULAR_POWER)
+        glossyPower = std::max(glossyPower, double(gpu.back()[0].a));
+    }
+  }
+  ASSERT_GT(glossyPower, 0.0) << "the glossy box must fill the specular pyramids";
+}
+
 }  // namespace

@@ -9,6 +9,7 @@
 //     light's attribute pyramids, which are then mip-mapped again.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "gi/settings.h"
@@ -50,17 +51,24 @@ class BrsmPdf {
   BrsmPdf(engine::Context& ctx, uint32_t rsmSize, uint32_t gridSize);
 
   // Evaluates the first `settings.importanceCount` records of `importance` at the cells, writes
-  // the PDF into `light`'s diffuse axis pyramid and mip-maps it.
+  // the PDF into `light`'s diffuse axis pyramid and mip-maps it. `specular` false: the light's
+  // and the importance VSGLs' specular lobes are all powerless (the planner's specularLobes), so
+  // only I_d is evaluated and I_s is 0 (shaders/gi/brsm_evaluate.comp).
   void record(VkCommandBuffer cmd, VsglAttributes& light, const RsmView& view,
               const engine::Buffer& importance, const BrsmSettings& settings,
-              const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr);
+              const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr,
+              bool specular = true);
 
   engine::Image& cells() { return cells_; }  // the cell pyramid (shaders/shared/brsm.h)
 
  private:
+  // The evaluation pass with or without specular lobes, compiled when first used.
+  const engine::ComputeProgram& evaluate(bool specular);
+
+  engine::Context* ctx_;
   uint32_t rsmSize_;
   uint32_t gridSize_;
-  engine::ComputeProgram evaluate_;
+  std::optional<engine::ComputeProgram> evaluate_[2];
   engine::ComputeProgram compose_;
   engine::Image cells_;
 };

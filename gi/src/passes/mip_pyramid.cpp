@@ -28,16 +28,26 @@ MipPyramid::MipPyramid(engine::Context& ctx)
 
 void MipPyramid::record(VkCommandBuffer cmd, engine::Image& image, engine::GpuProfiler* profiler,
                         const char* passName) const {
+  record(cmd, image, glm::uvec2(image.desc().width, image.desc().height), profiler, passName);
+}
+
+void MipPyramid::record(VkCommandBuffer cmd, engine::Image& image, glm::uvec2 extent,
+                        engine::GpuProfiler* profiler, const char* passName) const {
   engine::ProfileScope scope(profiler, cmd, passName);
   const engine::ImageDesc& desc = image.desc();
+  if (extent.x > desc.width || extent.y > desc.height)
+    throw engine::Error("mip pyramid: extent " + std::to_string(extent.x) + "x" +
+                        std::to_string(extent.y) + " exceeds the " + std::to_string(desc.width) +
+                        "^2 image");
   for (uint32_t level = 1; level < desc.mips; ++level) {
-    uint32_t size = std::max(1u, desc.width >> level);
-    gpu::MipReducePush push{{size, size}, 0, 0};
+    // ceil(extent / 2^level): the texels with a child in the previous level's region.
+    const glm::uvec2 size = glm::max((extent + (1u << level) - 1u) >> level, glm::uvec2(1u));
+    gpu::MipReducePush push{size, 0, 0};
     program_.dispatch(cmd,
                       {engine::Binding::storageImage(image, level - 1),
                        engine::Binding::storageImage(image, level)},
-                      push, engine::groupCount(size, MIP_GROUP_X),
-                      engine::groupCount(size, MIP_GROUP_Y));
+                      push, engine::groupCount(size.x, MIP_GROUP_X),
+                      engine::groupCount(size.y, MIP_GROUP_Y));
     engine::computeBarrier(cmd);
   }
 }

@@ -23,8 +23,8 @@ class VsglAttributes {
   // The padding is cleared when the source extent changes, so every recorded command buffer
   // must be submitted.
   // specular = false (the effect planner: no surface has a specular lobe, so the specular
-  // pyramids' level 0 is zero) clears the specular pyramids instead of reducing them: the same
-  // zeros, without their mip passes.
+  // pyramids' level 0 would be zero) leaves the specular pyramids zero at every level, cleared
+  // once while the setting stays off, and skips their lobes and mip passes: the same zeros.
   void record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface, const RsmView& view,
               const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr,
               bool specular = true);
@@ -34,8 +34,9 @@ class VsglAttributes {
  private:
   uint32_t size_;
   std::string passPrefix_;
-  glm::uvec2 paddedExtent_{0u};  // source extent whose padding was last cleared
-  engine::ComputeProgram program_;
+  glm::uvec2 lastExtent_{0u};           // source extent of the last record: the padding is zero
+  bool specularZero_ = false;           // the specular pyramids are zero at every level
+  engine::ComputeProgram programs_[2];  // vsgl_attributes.comp without, with specular lobes
   std::array<engine::Image, VSGL_ATTR_COUNT> pyramids_;
 };
 

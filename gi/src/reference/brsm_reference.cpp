@@ -20,12 +20,13 @@ SgLobe cellLobe(const glm::dvec4& power, const glm::dvec4& position, const glm::
 }  // namespace
 
 double reflectedImportance(const std::vector<gpu::Vsgl>& importance, glm::dvec3 receiver,
-                           const SgLobe& lobe) {
+                           const SgLobe& lobe, bool specular) {
   // The cell lobe as a vMF: an SG whose integral over the sphere is 1.
   const Sg vmf{lobe.axis, lobe.sharpness, -std::log(sgIntegral(lobe.sharpness))};
   double sum = 0.0;
   for (const gpu::Vsgl& v : importance)
-    for (gpu::VsglLobe camera : {v.diffuse, v.specular}) {
+    for (int l = 0; l < (specular ? 2 : 1); ++l) {
+      gpu::VsglLobe camera = l == 0 ? v.diffuse : v.specular;
       if (!(camera.power.a > 0.0f)) continue;
       camera.power = glm::vec4(camera.power.a);  // the scalar importance weight
       const VsglIncomingRadiance incoming = vsglIncomingRadiance(camera, receiver);
@@ -36,7 +37,7 @@ double reflectedImportance(const std::vector<gpu::Vsgl>& importance, glm::dvec3 
 
 std::vector<glm::dvec4> brsmCellsReference(const AttributePyramids& light, glm::dvec3 origin,
                                            const std::vector<gpu::Vsgl>& importance,
-                                           uint32_t gridSize) {
+                                           uint32_t gridSize, bool specular) {
   const uint32_t level = uint32_t(std::countr_zero(light[0].size / gridSize));
   std::vector<glm::dvec4> cells(size_t{gridSize} * gridSize, glm::dvec4(0.0));
   for (uint32_t y = 0; y < gridSize; ++y)
@@ -51,10 +52,13 @@ std::vector<glm::dvec4> brsmCellsReference(const AttributePyramids& light, glm::
                                                (wd + ws);
       const double id = reflectedImportance(
           importance, receiver,
-          cellLobe(diffusePower, at(VSGL_ATTR_DIFFUSE_POSITION), at(VSGL_ATTR_DIFFUSE_AXIS)));
-      const double is = reflectedImportance(
-          importance, receiver,
-          cellLobe(specularPower, at(VSGL_ATTR_SPECULAR_POSITION), at(VSGL_ATTR_SPECULAR_AXIS)));
+          cellLobe(diffusePower, at(VSGL_ATTR_DIFFUSE_POSITION), at(VSGL_ATTR_DIFFUSE_AXIS)),
+          specular);
+      const double is =
+          specular ? reflectedImportance(importance, receiver,
+                                         cellLobe(specularPower, at(VSGL_ATTR_SPECULAR_POSITION),
+                                                  at(VSGL_ATTR_SPECULAR_AXIS)))
+                   : 0.0;
       cells[size_t{y} * gridSize + x] = {id, is, id * wd + is * ws, 0.0};
     }
   return cells;
