@@ -28,11 +28,20 @@ struct IsmFrame {
   float extent;    // m: the VSGL's spatial standard deviation (lookups behind the base plane)
 };
 
+// The paraboloid's tangents around a unit axis (Duff et al. 2017, "Building an orthonormal
+// basis, revisited"): continuous except across axis.z = 0, no normalisation.
+void ismFrameBasis(vec3 axis, out vec3 tangent, out vec3 bitangent) {
+  float s = axis.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (s + axis.z);
+  float b = axis.x * axis.y * a;
+  tangent = vec3(1.0 + s * axis.x * axis.x * a, s * b, -s * axis.x);
+  bitangent = vec3(b, s + axis.y * axis.y * a, -axis.y);
+}
+
 // The ISM frame from a VSGL's two lobes: centre = mean of the lobe means weighted by their
 // powers (power.a), extent = the square root of their variances weighted the same way, axis =
 // the diffuse lobe's axis (the specular one when the diffuse lobe has no power), tangents from
-// Duff et al. 2017 ("Building an orthonormal basis, revisited"), which is continuous except
-// across axis.z = 0 and needs no normalisation. The centre is lifted by
+// ismFrameBasis. The centre is lifted by
 // `centreOffset` metres along the axis so that the VSGL's own surface (which passes through the
 // mean on a flat receiver) falls below the hemisphere instead of occluding it.
 IsmFrame ismFrameFromLobes(vec4 diffuseMeanVariance, vec3 diffuseAxis, float diffuseWeight,
@@ -50,11 +59,7 @@ IsmFrame ismFrameFromLobes(vec4 diffuseMeanVariance, vec3 diffuseAxis, float dif
   f.centre = f.lit ? (diffuseWeight * diffuseMean + specularWeight * specularMean) / weight +
                          centreOffset * axis
                    : vec3(0.0);
-  float s = axis.z >= 0.0 ? 1.0 : -1.0;
-  float a = -1.0 / (s + axis.z);
-  float b = axis.x * axis.y * a;
-  f.tangent = vec3(1.0 + s * axis.x * axis.x * a, s * b, -s * axis.x);
-  f.bitangent = vec3(b, s + axis.y * axis.y * a, -axis.y);
+  ismFrameBasis(axis, f.tangent, f.bitangent);
   return f;
 }
 

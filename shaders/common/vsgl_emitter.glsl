@@ -16,14 +16,24 @@ float vsglPlanarity(float diffuseSharpness) {
   return smoothstep(float(VSGL_CORNER_SHARPNESS), float(VSGL_FLAT_SHARPNESS), diffuseSharpness);
 }
 
-// The plane of a VSGL as vsglSpot takes it: (beta n, 1 - beta), n the diffuse lobe's axis (the
-// cluster's mean normal); (0, 0, 0, 1), the SG emitter, when `planar` is off or the VSGL has no
-// diffuse weight.
-vec4 vsglEmitterPlane(Vsgl vsgl, bool planar) {
+// The planarity of a VSGL's emitter: beta of its diffuse lobe, 0 (the SG emitter) when `planar`
+// is off or the VSGL has no diffuse weight or axis.
+float vsglEmitterPlanarity(Vsgl vsgl, bool planar) {
   vec3 axis = vsgl.diffuse.axisSharpness.xyz;
   bool hasPlane = planar && vsgl.diffuse.power.a > 0.0 && dot(axis, axis) > 0.0;
-  float beta = hasPlane ? vsglPlanarity(vsgl.diffuse.axisSharpness.w) : 0.0;
-  return vec4(hasPlane ? beta * normalize(axis) : vec3(0.0), 1.0 - beta);
+  return hasPlane ? vsglPlanarity(vsgl.diffuse.axisSharpness.w) : 0.0;
+}
+
+// The plane as vsglSpot takes it, (beta n, 1 - beta), from the planarity and the diffuse lobe's
+// axis (n, the cluster's mean normal, is that axis normalised); (0, 0, 0, 1) for beta = 0.
+// Shading broadcasts beta and the axis and rebuilds the plane here (common/ism_broadcast.glsl
+// says why).
+vec4 vsglEmitterPlane(vec3 diffuseAxis, float beta) {
+  return beta > 0.0 ? vec4(beta * normalize(diffuseAxis), 1.0 - beta) : vec4(0.0, 0.0, 0.0, 1.0);
+}
+
+vec4 vsglEmitterPlane(Vsgl vsgl, bool planar) {
+  return vsglEmitterPlane(vsgl.diffuse.axisSharpness.xyz, vsglEmitterPlanarity(vsgl, planar));
 }
 
 // N of a specular lobe: (1 - beta) S(lambda) + beta pi D(lambda, (xi . n)^+), D the [T24]

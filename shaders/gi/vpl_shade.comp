@@ -50,11 +50,11 @@ layout(constant_id = 1) const uint kPcf = ISM_PCF_BILINEAR;
 // One VPL as the loop sees it: the lane's own record, or lane j's after a broadcast.
 struct PointLight {
   vec4 positionArea;   // xyz = position (world), w = the disc's area a (m^2)
-  vec4 normal;         // xyz = the surface normal, 0 without diffuse power
+  vec4 normal;         // xyz = the surface normal, 0 without diffuse power; w = beta, the
+                       // planarity (vsglEmitterPlanarity) that rebuilds the emitter's plane
   vec4 diffusePower;   // rgb = Phi_d (W)
   vec4 axisSharpness;  // the specular lobe's SG
   vec4 specularPower;  // rgb = Phi_s (W); 0 when VSGL_SHADE_DIFFUSE_LOBES leaves it out
-  vec4 plane;          // vsglEmitterPlane: (beta n, 1 - beta)
 };
 
 PointLight pointLight(Vsgl v) {
@@ -62,12 +62,12 @@ PointLight pointLight(Vsgl v) {
   bool hasNormal = v.diffuse.power.a > 0.0;
   VsglLobe lobe = hasNormal ? v.diffuse : v.specular;
   p.positionArea = vec4(lobe.meanVariance.xyz, 4.0 * kPi * lobe.meanVariance.w);
-  p.normal = vec4(hasNormal ? v.diffuse.axisSharpness.xyz : vec3(0.0), 0.0);
+  // Without a normal beta is 0 (no diffuse weight), so the plane is the SG emitter's either way.
+  p.normal = vec4(hasNormal ? v.diffuse.axisSharpness.xyz : vec3(0.0), vsglEmitterPlanarity(v, true));
   p.diffusePower = vec4(v.diffuse.power.rgb, 0.0);
   p.axisSharpness = v.specular.axisSharpness;
   bool specular = (kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u;
   p.specularPower = vec4(specular ? v.specular.power.rgb : vec3(0.0), 0.0);
-  p.plane = vsglEmitterPlane(v, true);
   return p;
 }
 
@@ -75,7 +75,7 @@ PointLight broadcastLight(PointLight p, uint lane) {
   return PointLight(subgroupBroadcast(p.positionArea, lane), subgroupBroadcast(p.normal, lane),
                     subgroupBroadcast(p.diffusePower, lane),
                     subgroupBroadcast(p.axisSharpness, lane),
-                    subgroupBroadcast(p.specularPower, lane), subgroupBroadcast(p.plane, lane));
+                    subgroupBroadcast(p.specularPower, lane));
 }
 
 // The radiant intensity the VPL sends along unit `toward` (from the VPL), its specular SG widened
@@ -86,8 +86,9 @@ vec3 intensity(PointLight p, vec3 toward, float spread) {
   VsglLobe lobe;  // vsglSpecularNormalisation reads its axis and sharpness only
   lobe.axisSharpness = vec4(p.axisSharpness.xyz, p.axisSharpness.w / (1.0 + p.axisSharpness.w * spread));
   float g = exp(lobe.axisSharpness.w * (dot(lobe.axisSharpness.xyz, toward) - 1.0));
-  float cut = p.plane.w + max(dot(p.plane.xyz, toward), 0.0);
-  return i + p.specularPower.rgb * (g * cut / vsglSpecularNormalisation(lobe, p.plane));
+  vec4 plane = vsglEmitterPlane(p.normal.xyz, p.normal.w);
+  float cut = plane.w + max(dot(plane.xyz, toward), 0.0);
+  return i + p.specularPower.rgb * (g * cut / vsglSpecularNormalisation(lobe, plane));
 }
 
 void main() {

@@ -168,6 +168,7 @@ void main() {
   // The same alpha floor as the direct light's BRDF (common/brdf.glsl).
   float alpha = max(diffuseRoughness.a * diffuseRoughness.a, 1e-3);
   const bool glossy = (kFlags & VSGL_SHADE_GLOSSY) != 0u;
+  const bool diffuseOnly = (kFlags & VSGL_SHADE_DIFFUSE_LOBES) != 0u;  // no specular lobes
   const bool shadowed = (kFlags & VSGL_SHADE_VISIBILITY) != 0u;
   SgGgxReceiver ggx;  // the glossy term's per-pixel part (sg_lighting.glsl)
   if (glossy) ggx = sgGgxReceiver(normal, view, alpha, specular.rgb, specular.a);
@@ -205,7 +206,8 @@ void main() {
   for (uint first = 0u; first < pc.vsglCount; first += lanes) {
     uint count = min(lanes, pc.vsglCount - first);
     Vsgl mine = vsgls[first + min(gl_SubgroupInvocationID, count - 1u)];
-    vec4 myPlane = vsglEmitterPlane(mine, (kFlags & VSGL_SHADE_PLANAR) != 0u);
+    float myBeta = vsglEmitterPlanarity(mine, (kFlags & VSGL_SHADE_PLANAR) != 0u);
+    vec4 myPlane = vsglEmitterPlane(mine.diffuse.axisSharpness.xyz, myBeta);
     ShadeLobe myDiffuse = diffuseShadeLobe(mine.diffuse);
     ShadeLobe mySpecular = specularShadeLobe(mine.specular, myPlane);
     IsmFrame myFrame = ismFrame(mine, pc.ism.centreOffset);
@@ -223,7 +225,7 @@ void main() {
           myPlane.w * diffuseSharpness,
           myDiffuse.colourLogScale.a - log(vsglLambertianNormalisation(diffuseSharpness, myPlane)),
           group);
-      if ((kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u)
+      if (!diffuseOnly)
         bound += vsglLobeBound(mySpecular.meanVariance.xyz, mySpecular.meanVariance.w,
                                mySpecular.axisSharpness.xyz, mySpecular.axisSharpness.w,
                                mySpecular.colourLogScale.a, group);
@@ -241,10 +243,16 @@ void main() {
     while (any(notEqual(keep, uvec4(0u)))) {
       uint j = subgroupBallotFindLSB(keep);
       keep[j >> 5u] &= ~(1u << (j & 31u));
+      // As few scalars broadcast as can be (common/ism_broadcast.glsl says why): the plane is
+      // rebuilt from the diffuse axis and beta, and without specular lobes a lit frame's axis
+      // is the diffuse one (common/ism_lookup.glsl, ismFrameFromLobes).
       ShadeLobe diffuseLobe = broadcastLobe(myDiffuse, j);
-      ShadeLobe specularLobe = broadcastLobe(mySpecular, j);
-      IsmFrame frame = broadcastFrame(myFrame, j);
-      vec4 plane = subgroupBroadcast(myPlane, j);
+      vec3 diffuseAxis = diffuseLobe.axisSharpness.xyz;
+      vec4 plane = vsglEmitterPlane(diffuseAxis, subgroupBroadcast(myBeta, j));
+      IsmFrame frame = diffuseOnly ? broadcastFrame(myFrame, diffuseAxis, j)
+                                   : broadcastFrame(myFrame, j);
+      ShadeLobe specularLobe;
+      if (!diffuseOnly) specularLobe = broadcastLobe(mySpecular, j);
       if (!shaded) continue;
       // One test per VSGL: both lobes share its map.
       float visibility = shadowed ? ismVisibility(pc.ism, frame, first + j, receiver, normal) : 1.0;
@@ -254,7 +262,7 @@ void main() {
           diffuseLobe.axisSharpness.w, diffuseLobe.colourLogScale.a, receiver, normal, plane);
       addLobe(diffuseLobe, diffuseRadiance, visibility, normal, glossy, ggx, diffuseSum,
               glossySum);
-      if ((kFlags & VSGL_SHADE_DIFFUSE_LOBES) == 0u) {
+      if (!diffuseOnly) {
         Sg specularRadiance = vsglIncomingRadiance(
             specularLobe.meanVariance.xyz, specularLobe.meanVariance.w,
             specularLobe.axisSharpness.xyz, specularLobe.axisSharpness.w,
