@@ -4,7 +4,6 @@
 #ifndef SHADERS_COMMON_ISM_BROADCAST_GLSL
 #define SHADERS_COMMON_ISM_BROADCAST_GLSL
 
-//
 // Each broadcast scalar costs lavapipe about as much as ten arithmetic operations per lane (VSGL
 // shading measured 7 % faster with the two tangents recomputed instead of broadcast), so only
 // what cannot be recomputed travels: the centre, the axis, and the extent with `lit` folded into
