@@ -32,10 +32,6 @@ vec4 vsglEmitterPlane(vec3 diffuseAxis, float beta) {
   return beta > 0.0 ? vec4(beta * normalize(diffuseAxis), 1.0 - beta) : vec4(0.0, 0.0, 0.0, 1.0);
 }
 
-vec4 vsglEmitterPlane(Vsgl vsgl, bool planar) {
-  return vsglEmitterPlane(vsgl.diffuse.axisSharpness.xyz, vsglEmitterPlanarity(vsgl, planar));
-}
-
 // N of a specular lobe: (1 - beta) S(lambda) + beta pi D(lambda, (xi . n)^+), D the [T24]
 // clamped-cosine integral. Per lobe: the specular lobe keeps its sharpness. A reflection leaves
 // above its surface; a lobe whose axis points below the plane (no RSM makes one) is normalised as

@@ -51,28 +51,22 @@ void ImportanceVsgls::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
 }
 
 BrsmPdf::BrsmPdf(engine::Context& ctx, uint32_t rsmSize, uint32_t gridSize)
-    : ctx_(&ctx),
-      rsmSize_(rsmSize),
+    : rsmSize_(rsmSize),
       gridSize_(gridSize),
       compose_(ctx, "brsm_compose", kBrsmComposeSpv,
                std::vector<VkDescriptorType>(7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
                sizeof(gpu::BrsmComposePush)),
       cells_(createPyramid(ctx, gridSize)) {
   validateBrsmSettings({1, gridSize, 1.0f}, rsmSize);
-}
-
-const engine::ComputeProgram& BrsmPdf::evaluate(bool specular) {
-  std::optional<engine::ComputeProgram>& program = evaluate_[specular];
-  if (!program) {
-    std::vector<VkDescriptorType> types(VSGL_ATTR_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
-    types.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    types.push_back(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
-    const uint32_t specialization[] = {specular ? 1u : 0u};
-    program.emplace(*ctx_, specular ? "brsm_evaluate" : "brsm_evaluate (diffuse lobes)",
-                    kBrsmEvaluateSpv, std::move(types), uint32_t(sizeof(gpu::BrsmEvaluatePush)),
-                    specialization);
+  std::vector<VkDescriptorType> types(VSGL_ATTR_COUNT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  types.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  types.push_back(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  for (uint32_t specular : {0u, 1u}) {
+    const uint32_t specialization[] = {specular};
+    evaluate_[specular] = engine::ComputeProgram(
+        ctx, specular ? "brsm_evaluate" : "brsm_evaluate (diffuse lobes)", kBrsmEvaluateSpv, types,
+        sizeof(gpu::BrsmEvaluatePush), specialization);
   }
-  return *program;
 }
 
 void BrsmPdf::record(VkCommandBuffer cmd, VsglAttributes& light, const RsmView& view,
@@ -97,16 +91,16 @@ void BrsmPdf::record(VkCommandBuffer cmd, VsglAttributes& light, const RsmView& 
     push.origin = glm::vec4(view.origin, 0.0f);
     push.importanceCount = settings.importanceCount;
     push.gridSize = gridSize_;
-    evaluate(specular).dispatch(cmd,
-                                {Binding::storageImage(light.pyramid(0), level),
-                                 Binding::storageImage(light.pyramid(1), level),
-                                 Binding::storageImage(light.pyramid(2), level),
-                                 Binding::storageImage(light.pyramid(3), level),
-                                 Binding::storageImage(light.pyramid(4), level),
-                                 Binding::storageImage(light.pyramid(5), level),
-                                 Binding::storage(importance), Binding::storageImage(cells_, 0)},
-                                push, engine::groupCount(gridSize_, BRSM_GROUP_X),
-                                engine::groupCount(gridSize_, BRSM_GROUP_Y));
+    evaluate_[specular].dispatch(cmd,
+                                 {Binding::storageImage(light.pyramid(0), level),
+                                  Binding::storageImage(light.pyramid(1), level),
+                                  Binding::storageImage(light.pyramid(2), level),
+                                  Binding::storageImage(light.pyramid(3), level),
+                                  Binding::storageImage(light.pyramid(4), level),
+                                  Binding::storageImage(light.pyramid(5), level),
+                                  Binding::storage(importance), Binding::storageImage(cells_, 0)},
+                                 push, engine::groupCount(gridSize_, BRSM_GROUP_X),
+                                 engine::groupCount(gridSize_, BRSM_GROUP_Y));
     engine::computeBarrier(cmd);
   }
   engine::ProfileScope scope(profiler, cmd, "brsm pdf mipmapping");

@@ -9,7 +9,6 @@
 //     light's attribute pyramids, which are then mip-mapped again.
 #pragma once
 
-#include <optional>
 #include <string>
 
 #include "gi/settings.h"
@@ -62,13 +61,9 @@ class BrsmPdf {
   engine::Image& cells() { return cells_; }  // the cell pyramid (shaders/shared/brsm.h)
 
  private:
-  // The evaluation pass with or without specular lobes, compiled when first used.
-  const engine::ComputeProgram& evaluate(bool specular);
-
-  engine::Context* ctx_;
   uint32_t rsmSize_;
   uint32_t gridSize_;
-  std::optional<engine::ComputeProgram> evaluate_[2];
+  engine::ComputeProgram evaluate_[2];  // brsm_evaluate.comp without, with specular lobes
   engine::ComputeProgram compose_;
   engine::Image cells_;
 };

@@ -18,6 +18,15 @@ VsglAttributes::VsglAttributes(engine::Context& ctx, uint32_t size, std::string 
   for (auto& p : pyramids_) p = createPyramid(ctx, size);
 }
 
+void VsglAttributes::clearLevels(VkCommandBuffer cmd, int first, int end) {
+  const VkClearColorValue zero{};
+  const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0, 1};
+  engine::computeToTransferBarrier(cmd);
+  for (int a = first; a < end; ++a)
+    vkCmdClearColorImage(cmd, pyramids_[a].handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+  engine::transferToComputeBarrier(cmd);
+}
+
 void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface,
                             const RsmView& view, const MipPyramid& mips,
                             engine::GpuProfiler* profiler, bool specular) {
@@ -33,25 +42,13 @@ void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffe
       // (the attribute pass covers only the source, the mips only what it reduces to, the BRSM
       // compose writes their zeros back), so the clear is needed only when the source extent
       // changes: at 1920x1088 in 2048^2 it is six 85 MB clears per frame saved.
-      VkClearColorValue zero{};
-      const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0,
-                                        1};
-      engine::computeToTransferBarrier(cmd);
-      for (auto& p : pyramids_)
-        vkCmdClearColorImage(cmd, p.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
-      engine::transferToComputeBarrier(cmd);
+      clearLevels(cmd, 0, VSGL_ATTR_COUNT);
       specularZero_ = true;
     }
     if (!specular && !specularZero_) {
       // Without specular lobes the specular pyramids are zero at every level; nothing writes
       // them until a frame with specular lobes, so one clear serves every frame until then.
-      VkClearColorValue zero{};
-      const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0,
-                                        1};
-      engine::computeToTransferBarrier(cmd);
-      for (int a = VSGL_ATTR_SPECULAR_POWER; a <= VSGL_ATTR_SPECULAR_AXIS; ++a)
-        vkCmdClearColorImage(cmd, pyramids_[a].handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
-      engine::transferToComputeBarrier(cmd);
+      clearLevels(cmd, VSGL_ATTR_SPECULAR_POWER, VSGL_ATTR_COUNT);
       specularZero_ = true;
     }
     if (specular) specularZero_ = false;

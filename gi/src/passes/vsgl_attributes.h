@@ -32,6 +32,9 @@ class VsglAttributes {
   engine::Image& pyramid(int attribute) { return pyramids_.at(attribute); }
 
  private:
+  // Zeroes every level of pyramids [first, end), between compute passes.
+  void clearLevels(VkCommandBuffer cmd, int first, int end);
+
   uint32_t size_;
   std::string passPrefix_;
   glm::uvec2 lastExtent_{0u};           // source extent of the last record: the padding is zero
