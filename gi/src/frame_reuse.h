@@ -75,6 +75,7 @@ struct VsglInputs {
   VsglMethod method = VsglMethod::FilteredImportanceSampling;
   KmeansSettings kmeans;
   BrsmSettings brsm;
+  float surfaceTolerance = 0.0f;
   bool operator==(const VsglInputs&) const = default;
 };
 

@@ -516,9 +516,16 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
   // so neither they nor what is made from them are kept.
   const bool evolving = !filtered(settings.method) && settings.kmeans.temporal;
 
-  VsglInputs vsglIn{
-      {},           std::nullopt,    settings.vsglCount, settings.kernelScale, settings.rule,
-      settings.pdf, settings.method, settings.kmeans,    settings.brsm};
+  VsglInputs vsglIn{{},
+                    std::nullopt,
+                    settings.vsglCount,
+                    settings.kernelScale,
+                    settings.rule,
+                    settings.pdf,
+                    settings.method,
+                    settings.kmeans,
+                    settings.brsm,
+                    settings.surfaceTolerance};
   for (const LightView& v : views) vsglIn.views.push_back(v.inputs);
   if (brsm)
     vsglIn.importance = {cameraIn, settings.brsm.importanceCount, settings.rule,
@@ -531,6 +538,8 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
     // [S3] generates the importance VSGLs with the rule under test and K = 1.
     plan.reuse.importance = brsm && last.importance == vsglIn.importance;
     if (brsm && !plan.reuse.importance) {
+      // The importance VSGLs keep their kernels as sized: kept on their surfaces they flickered
+      // more under a moving camera for little accuracy (docs/techniques/vsgl-generation.md).
       importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
                          &profiler, plan.specularLobes);
       last.importance = vsglIn.importance;
@@ -578,9 +587,10 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
                                 brsm ? settings.brsm.fluxMix : 1.0f, &profiler);
       const uint32_t generation = settings.method == VsglMethod::Vpl ? VSGL_RULE_POINT : rule;
       for (uint32_t v = 0; v < viewCount; ++v)
-        generator.recordRanged(cmd, attributesOf(v), views[v].view,
-                               {settings.vsglCount, settings.kernelScale, generation},
-                               allocation.ranges(), v, &profiler);
+        generator.recordRanged(
+            cmd, attributesOf(v), views[v].view,
+            {settings.vsglCount, settings.kernelScale, generation, 0, settings.surfaceTolerance},
+            allocation.ranges(), v, &profiler);
     }
     last.vsgls = vsglIn;
   }
@@ -691,7 +701,8 @@ void IndirectLighting::Impl::recordVsgls(VkCommandBuffer cmd, const RsmView& rsm
                                          uint32_t first, uint32_t count, bool several) {
   if (filtered(settings.method)) {
     const uint32_t generation = settings.method == VsglMethod::Vpl ? VSGL_RULE_POINT : rule;
-    generator.record(cmd, attributes, rsmView, {count, settings.kernelScale, generation, first},
+    generator.record(cmd, attributes, rsmView,
+                     {count, settings.kernelScale, generation, first, settings.surfaceTolerance},
                      &profiler);
     return;
   }

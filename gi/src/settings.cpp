@@ -33,6 +33,8 @@ std::string validateSettings(const Settings& s) {
   if (!(s.kernelScale >= 1.0f && s.kernelScale <= float(s.vsglCount)))
     return field("kernelScale", std::to_string(s.kernelScale),
                  ("is outside [1, vsglCount = " + std::to_string(s.vsglCount) + "]").c_str());
+  if (!(s.surfaceTolerance >= 0.0f && s.surfaceTolerance <= 10.0f))
+    return field("surfaceTolerance", std::to_string(s.surfaceTolerance), "is outside [0, 10]");
   if (s.rule != KernelRule::Tok15 && s.rule != KernelRule::Modified)
     return field("rule", std::to_string(uint32_t(s.rule)), "is neither Tok15 nor Modified");
   if (s.pdf != PdfKind::Flux && s.pdf != PdfKind::Brsm)

@@ -14,6 +14,7 @@
 #include "pixel_parallel.h"
 #include "reference/ism_reference.h"
 #include "reference/sg_math.h"
+#include "reference/vsgl_emitter.h"
 #include "reference/vsgl_shade_reference.h"
 #include "shading_point.h"
 
@@ -150,7 +151,32 @@ Radiance integrateLobe(const gi::VsglIncomingRadiance& lobe, const gi::ShadeRece
   return out;
 }
 
+// Per VSGL, the VPLs under its kernel (indices into `vpls`) with their kernel weight times
+// power; empty for k-means clusters.
+std::vector<std::vector<std::pair<uint32_t, double>>> kernelMembers(
+    const std::vector<gpu::Vsgl>& vsgls, uint32_t rsmSize, const std::vector<Vpl>& vpls) {
+  std::vector<int64_t> vplAt(size_t{rsmSize} * rsmSize, -1);
+  for (size_t j = 0; j < vpls.size(); ++j) vplAt.at(vpls[j].texel) = int64_t(j);
+  std::vector<std::vector<std::pair<uint32_t, double>>> members(vsgls.size());
+  for (size_t k = 0; k < vsgls.size(); ++k) {
+    const gpu::Vsgl& v = vsgls[k];
+    if (v.kernel.z < 0.0f) continue;
+    std::map<uint32_t, double> weights;  // a texel is reached once per level and corner
+    forEachKernelTexel(glm::dvec2(v.kernel.x, v.kernel.y), v.kernel.z, rsmSize,
+                       [&](size_t t, double w) {
+                         if (vplAt[t] >= 0) weights[uint32_t(vplAt[t])] += w;
+                       });
+    for (const auto& [j, w] : weights)
+      if (const double p = w * vplPower(vpls[j]); p > 0.0) members[k].push_back({j, p});
+  }
+  return members;
+}
+
 }  // namespace
+
+bool flatVsgl(const gpu::Vsgl& vsgl) {
+  return vsgl.diffuse.power.a > 0.0f && gi::vsglPlanarity(vsgl.diffuse.axisSharpness.w) >= 0.95;
+}
 
 std::vector<double> kernelTexelWeights(const std::vector<gpu::Vsgl>& vsgls, uint32_t rsmSize,
                                        const std::vector<Vpl>& vpls) {
@@ -191,7 +217,14 @@ VsglStageImages vsglStages(const engine::Scene& scene, const EmbreeScene& rays,
   VsglStageImages out;
   out.numeric.assign(pixels, glm::dvec3(0.0));
   out.unshadowed.assign(pixels, glm::dvec3(0.0));
+  out.unshadowedFlat.assign(pixels, glm::dvec3(0.0));
   out.analytic.assign(pixels, glm::dvec3(0.0));
+  const std::vector<Vpl>* vpls = settings.kernelVpls;
+  std::vector<std::vector<std::pair<uint32_t, double>>> members;
+  if (vpls) {
+    out.areaVisible.assign(pixels, glm::dvec3(0.0));
+    members = kernelMembers(vsgls, settings.rsmSize, *vpls);
+  }
   std::vector<gi::IsmFrameReference> frames;
   std::vector<gi::VsglEmission> emissions;
   for (const gpu::Vsgl& v : vsgls) {
@@ -215,11 +248,35 @@ VsglStageImages vsglStages(const engine::Scene& scene, const EmbreeScene& rays,
     std::vector<double> visible(vsgls.size(), 0.0);
     for (size_t k = 0; k < vsgls.size(); ++k)
       visible[k] = frames[k].lit && rays.visible(frames[k].centre, xo) ? 1.0 : 0.0;
+    // Area visibility: each VPL's ray is cast once per receiver, when a kernel first needs it.
+    std::vector<double> areaVisible;
+    if (vpls) {
+      areaVisible = visible;
+      std::vector<int8_t> vplVisible(vpls->size(), -1);
+      for (size_t k = 0; k < vsgls.size(); ++k) {
+        double seen = 0.0, all = 0.0;
+        for (const auto& [j, weight] : members[k]) {
+          const Vpl& y = (*vpls)[j];
+          const glm::dvec3 d = x.position - y.position;
+          const double d2 = glm::dot(d, d);
+          const glm::dvec3 w = d / std::sqrt(d2);
+          const double transfer = std::max(glm::dot(y.normal, w), 0.0) *
+                                  std::max(-glm::dot(r.normal, w), 0.0) / (d2 + y.area / kPi);
+          if (!(transfer > 0.0)) continue;
+          if (vplVisible[j] < 0)
+            vplVisible[j] = rays.visible(offsetOrigin(y.position, y.geometricNormal), xo);
+          all += weight * transfer;
+          seen += weight * transfer * vplVisible[j];
+        }
+        if (all > 0.0) areaVisible[k] = seen / all;
+      }
+    }
     const gi::IndirectRadiance analytic = gi::shadeReference(
         r, vsgls, settings.glossy, settings.planarEmitters, [&](uint32_t k) { return visible[k]; });
     out.analytic[i] = analytic.diffuse + analytic.glossy;
-    Radiance numeric, unshadowed;
+    Radiance numeric, unshadowed, flat, area;
     for (size_t k = 0; k < vsgls.size(); ++k) {
+      const bool isFlat = flatVsgl(vsgls[k]);
       const auto lobes = {std::pair{&vsgls[k].diffuse, &emissions[k].diffuse},
                           std::pair{&vsgls[k].specular, &emissions[k].specular}};
       uint64_t lobeIndex = 0;
@@ -234,10 +291,20 @@ VsglStageImages vsglStages(const engine::Scene& scene, const EmbreeScene& rays,
         unshadowed.glossy += l.glossy;
         numeric.diffuse += visible[k] * l.diffuse;
         numeric.glossy += visible[k] * l.glossy;
+        if (isFlat) {
+          flat.diffuse += l.diffuse;
+          flat.glossy += l.glossy;
+        }
+        if (vpls) {
+          area.diffuse += areaVisible[k] * l.diffuse;
+          area.glossy += areaVisible[k] * l.glossy;
+        }
       }
     }
     out.numeric[i] = numeric.diffuse + numeric.glossy;
     out.unshadowed[i] = unshadowed.diffuse + unshadowed.glossy;
+    out.unshadowedFlat[i] = flat.diffuse + flat.glossy;
+    if (vpls) out.areaVisible[i] = area.diffuse + area.glossy;
   });
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -9,6 +9,10 @@
 //                 their light (Gaussian spot x SG emission, planar emitters), integrated
 //                 numerically against the true BRDF, against the same VPLs without visibility:
 //                 the light model's own error
+//      Beside it, the same with the flat VSGLs' light exact (their own VPLs) and with the
+//                 non-flat ones' exact: which VSGLs the light model's error comes from
+//   -> SG model, area visibility: the lobes shadowed by what their own VPLs see of the receiver
+//                 (the best one visibility number per VSGL and receiver can do)
 //   -> SG model:  the same, visibility by an exact ray from the VSGL's ISM centre (against
 //                 the grouping stage: the light model and one ray per VSGL for visibility)
 //   -> analytic:  the same lobes through the module's analytic SG lighting (the shading's double
@@ -39,10 +43,21 @@ std::vector<double> kernelTexelWeights(const std::vector<gpu::Vsgl>& vsgls, uint
 // `vpls` with each incident power scaled by its texel's weight.
 std::vector<Vpl> weightedVpls(const std::vector<Vpl>& vpls, const std::vector<double>& weights);
 
+// A VSGL the budget counts as flat: planar emitters' planarity (gi::vsglPlanarity of its diffuse
+// lobe) at least 0.95. Without diffuse weight it has no plane and is not flat.
+bool flatVsgl(const gpu::Vsgl& vsgl);
+
 struct VsglStageImages {
-  std::vector<glm::dvec3> numeric;     // SG model, numerically integrated
-  std::vector<glm::dvec3> unshadowed;  // the same without visibility
-  std::vector<glm::dvec3> analytic;    // the module's analytic SG lighting (double twin)
+  std::vector<glm::dvec3> numeric;         // SG model, numerically integrated
+  std::vector<glm::dvec3> unshadowed;      // the same without visibility
+  std::vector<glm::dvec3> unshadowedFlat;  // its share from the flat VSGLs (flatVsgl)
+  // SG model with each VSGL's visibility the mean of its own VPLs' exact visibility, each VPL
+  // weighted by its kernel weight, power and unshadowed diffuse transfer to the receiver
+  // (cos_y cos_x / (d^2 + A / pi)); a VSGL none of whose VPLs faces the receiver (and every
+  // k-means cluster, whose members the record does not list) keeps its one ray. Empty without
+  // VsglStageSettings::kernelVpls.
+  std::vector<glm::dvec3> areaVisible;
+  std::vector<glm::dvec3> analytic;  // the module's analytic SG lighting (double twin)
   double seconds = 0.0;
 };
 
@@ -55,6 +70,9 @@ struct VsglStageSettings {
   // between runs.
   uint32_t samplesPerLobe = 32;
   unsigned threads = 0;
+  // The RSM's VPLs (rsmVpls) and its side: with them the areaVisible image is computed.
+  const std::vector<Vpl>* kernelVpls = nullptr;
+  uint32_t rsmSize = 0;
 };
 
 // Primary rays through pixel centres (as the path tracer's); visibility of VSGL k from a

@@ -276,16 +276,50 @@ int run(const Options& o) {
       stageSettings.glossy = settings.glossy;
       stageSettings.ismCentreOffset = settings.ism.centreOffset;
       stageSettings.samplesPerLobe = o.samples;
+      stageSettings.kernelVpls = &vpls;
+      stageSettings.rsmSize = o.rsm;
       const truth::VsglStageImages sg = truth::vsglStages(scene, rays, view, vsgls, stageSettings);
 
-      const std::pair<const char*, const std::vector<glm::dvec3>*> stages[] = {
+      // Which VSGLs the light model's error comes from: the flat ones' light, then the others',
+      // replaced by their own VPLs (unshadowed). The weights are linear in the VSGLs, so the
+      // others' VPL image is the whole one less the flat ones'. k-means clusters map to no
+      // texels by their record, so their split is not made.
+      std::vector<gpu::Vsgl> flat;
+      double flatPower = 0.0, allPower = 0.0;
+      bool kernels = true;
+      for (const gpu::Vsgl& v : vsgls) {
+        const double p = double(v.diffuse.power.a) + double(v.specular.power.a);
+        allPower += p;
+        kernels = kernels && v.kernel.z >= 0.0f;
+        if (!truth::flatVsgl(v)) continue;
+        flat.push_back(v);
+        flatPower += p;
+      }
+      std::vector<glm::dvec3> flatExact, nonFlatExact;
+      if (kernels) {
+        const truth::VplGatherImage flatGroup = truth::vplGather(
+            scene, rays, view,
+            truth::weightedVpls(vpls, truth::kernelTexelWeights(flat, o.rsm, vpls)), 0, false);
+        for (size_t i = 0; i < reference.size(); ++i) {
+          const glm::dvec3 flatVpls = flatGroup.diffuse[i] + flatGroup.glossy[i];
+          flatExact.push_back(flatVpls + sg.unshadowed[i] - sg.unshadowedFlat[i]);
+          nonFlatExact.push_back(sg.unshadowedFlat[i] + groupingUnshadowed[i] - flatVpls);
+        }
+      }
+
+      std::vector<std::pair<const char*, const std::vector<glm::dvec3>*>> stages = {
           {"rsm", &rsmStage},
           {"grouping", &groupingStage},
           {"grouping-unshadowed", &groupingUnshadowed},
-          {"sg-model-unshadowed", &sg.unshadowed},
-          {"sg-model", &sg.numeric},
-          {"analytic", &sg.analytic},
-          {"module", &module}};
+          {"sg-model-unshadowed", &sg.unshadowed}};
+      if (kernels) {
+        stages.push_back({"sg-unshadowed-flat-exact", &flatExact});
+        stages.push_back({"sg-unshadowed-nonflat-exact", &nonFlatExact});
+      }
+      stages.insert(stages.end(), {{"sg-model-area-visibility", &sg.areaVisible},
+                                   {"sg-model", &sg.numeric},
+                                   {"analytic", &sg.analytic},
+                                   {"module", &module}});
       json row = {{"scene", name},
                   {"count", count},
                   {"method", o.method},
@@ -296,6 +330,8 @@ int run(const Options& o) {
                   {"rsm", o.rsm},
                   {"reference_noise", o.noise},
                   {"kernel_power_share", power > 0.0 ? covered / power : 0.0},
+                  {"flat_vsgls", flat.size()},
+                  {"flat_power_share", allPower > 0.0 ? flatPower / allPower : 0.0},
                   {"stages", json::array()}};
       for (const auto& [stage, image] : stages) {
         row["stages"].push_back({{"name", stage}, {"score", score(*image, reference, regions)}});
@@ -307,15 +343,19 @@ int run(const Options& o) {
                                       reference,
                                       engine::percentileAbsError(rsmStage, reference, 0.99) * 4.0);
       }
-      std::printf("%s N = %u (kernels carry %.4f of the RSM's power; CPU stages %.1f s):\n%s\n",
-                  name.c_str(), count, row["kernel_power_share"].get<double>(),
-                  grouped.seconds + groupedUnshadowed.seconds + sg.seconds,
-                  markdownTable(row).c_str());
+      std::printf(
+          "%s N = %u (kernels carry %.4f of the RSM's power; %zu flat VSGLs carry %.4f "
+          "of theirs; CPU stages %.1f s):\n%s\n",
+          name.c_str(), count, row["kernel_power_share"].get<double>(), flat.size(),
+          row["flat_power_share"].get<double>(),
+          grouped.seconds + groupedUnshadowed.seconds + sg.seconds, markdownTable(row).c_str());
       std::fflush(stdout);
-      char heading[160];
+      char heading[200];
       std::snprintf(heading, sizeof heading,
-                    "### N = %u\n\nThe kernels carry %.4f of the RSM's power.\n\n", count,
-                    row["kernel_power_share"].get<double>());
+                    "### N = %u\n\nThe kernels carry %.4f of the RSM's power; %zu flat VSGLs carry "
+                    "%.4f of the VSGLs' power.\n\n",
+                    count, row["kernel_power_share"].get<double>(), flat.size(),
+                    row["flat_power_share"].get<double>());
       md += heading + markdownTable(row) + "\n";
       rows.push_back(row);
     }

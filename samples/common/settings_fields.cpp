@@ -126,6 +126,10 @@ std::vector<SettingField> makeTable() {
             "shade the glossy (GGX) term; off, shading costs about 40 % less"),
       onOff(kVsgls, "planarEmitters", SETTING_ACCESS(planarEmitters),
             "flat VSGLs emit nothing below or along their plane; off = plain SG emitters"),
+      number(kFloat, kVsgls, "surfaceTolerance", "", 0.0f, 10.0f, kPlain,
+             SETTING_ACCESS(surfaceTolerance),
+             "kernels whose mean leaves their surface by more than this many standard "
+             "deviations shrink onto it; 0 = off, smaller = more accurate, more flicker"),
       // k-means
       number(kUint, kKmeans, "kmeans.iterations", "", 1, 64, kPlain,
              SETTING_ACCESS(kmeans.iterations),

@@ -76,6 +76,54 @@ float texelPatchArea(vec3 y, vec3 n) {
   return pc.texelPatch.w * c * c * c * dot(y, y) / cosine;
 }
 
+// Kernels that leave their surface (docs/techniques/vsgl-generation.md): a kernel of the light's
+// image that spans a depth discontinuity (a pillar's top and the floor beside it) has its mean
+// between the two surfaces, and its one Gaussian lights the room from mid-air. Whether the
+// kernel's mean at `level` lies more than pc.surfaceTolerance standard deviations (per axis, as
+// the lobe's variance) off the plane through `surface`, the lit surface under the kernel's
+// centre, with the diffuse lobe's mean normal. The offset is weighted by the kernel's planarity
+// (the planar emitters' beta of its diffuse sharpness): a corner's mean lies off both its faces
+// by nature, and its SG emitter is not cut by a plane. A kernel without diffuse weight has no
+// plane.
+bool offSurface(vec2 x, float level, vec3 surface) {
+  float wd = trilinear(diffusePower, x, level).a;
+  float w = wd + trilinear(specularPower, x, level).a;
+  vec3 axis = trilinear(diffuseAxis, x, level).xyz;
+  if (!(wd > 0.0) || !(dot(axis, axis) > 0.0)) return false;
+  vec4 sums = trilinear(diffusePosition, x, level) + trilinear(specularPosition, x, level);
+  vec3 mean = sums.xyz / w;
+  float variance = max(sums.w / w - dot(mean, mean), 0.0) * 0.5;
+  vec3 unitAxis;
+  float sharpness;
+  lobeFromMeanAxis(axis / wd, unitAxis, sharpness);
+  // vsglPlanarity of common/vsgl_emitter.glsl, which needs the shading's includes.
+  float beta = smoothstep(float(VSGL_CORNER_SHARPNESS), float(VSGL_FLAT_SHARPNESS), sharpness);
+  float h = beta * dot(mean - surface, unitAxis);
+  float t = pc.surfaceTolerance;
+  return h * h > t * t * variance;
+}
+
+// The lowest level at which the kernel leaves its surface, or `level` if it stays on it up to
+// there: a scan up from level 0 (where the kernel's mean is the surface itself) in quarter
+// levels, then bisection within the first quarter that leaves. The first crossing, not any
+// crossing: it moves continuously with x where a bisection over [0, level] could jump between
+// crossings.
+float surfaceLevel(vec2 x, float level, vec3 surface) {
+  float lo = 0.0;
+  while (lo < level) {
+    float hi = min(lo + VSGL_SURFACE_SCAN_STEP, level);
+    if (offSurface(x, hi, surface)) {
+      for (int step = 0; step < VSGL_SURFACE_BISECTION_STEPS; ++step) {
+        float mid = 0.5 * (lo + hi);
+        if (offSurface(x, mid, surface)) hi = mid; else lo = mid;
+      }
+      return lo;
+    }
+    lo = hi;
+  }
+  return level;
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   uint count = viewCount();
@@ -92,6 +140,12 @@ void main() {
   float density = pTop > 0.0 ? pdfTexel(node, 0) / pTop : 0.0;
   bool modified = pc.rule == VSGL_RULE_MODIFIED;
   float level = point ? 0.0 : modified ? modifiedFisLevel(x, pTop) : tok15Level(density);
+  // The surface under x: the power-weighted level-0 position bilinearly around it, which moves
+  // continuously with x. It is also the ISM's centre (docs/techniques/ism.md, "The map's centre").
+  float surfaceWeight = bilinear(diffusePower, x, 0).a + bilinear(specularPower, x, 0).a;
+  vec3 surface = (bilinear(diffusePosition, x, 0).xyz + bilinear(specularPosition, x, 0).xyz) /
+                 max(surfaceWeight, 1e-30);
+  if (pc.surfaceTolerance > 0.0 && surfaceWeight > 0.0) level = surfaceLevel(x, level, surface);
   // The diffuse axis sums carry the PDF in alpha: one filtered fetch serves both.
   vec4 diffuseAxisSums = trilinear(diffuseAxis, x, level);
   float filtered = pTop > 0.0 ? diffuseAxisSums.w / pTop : 0.0;
@@ -120,10 +174,6 @@ void main() {
     v.diffuse.meanVariance.w = v.specular.meanVariance.w = area / 12.566370614359172;  // 4 pi
   }
   v.kernel = vec4(x, level, filtered);
-  // The map's centre: the surface under x at level 0, bilinear like the kernel's own fetch so that
-  // it moves continuously with x (docs/techniques/ism.md, "The map's centre").
-  float weight = bilinear(diffusePower, x, 0).a + bilinear(specularPower, x, 0).a;
-  vec3 sums = bilinear(diffusePosition, x, 0).xyz + bilinear(specularPosition, x, 0).xyz;
-  v.visibilityPoint = weight > 0.0 ? vec4(pc.origin.xyz + sums / weight, 1.0) : vec4(0.0);
+  v.visibilityPoint = surfaceWeight > 0.0 ? vec4(pc.origin.xyz + surface, 1.0) : vec4(0.0);
   vsgls[first + i] = v;
 }

@@ -26,6 +26,11 @@
 #define VSGL_MAX_SHARPNESS 2199023255552.0
 // Modified FIS: bisection iterations on the mip level (the paper's 12).
 #define VSGL_BISECTION_STEPS 12
+// The search for the level at which a kernel leaves its surface: a scan up from level 0 in steps
+// of this many levels, then bisection steps within the first step that leaves (a resolution of
+// 0.25 / 2^8 = 0.001 levels).
+#define VSGL_SURFACE_SCAN_STEP 0.25
+#define VSGL_SURFACE_BISECTION_STEPS 8
 
 SHARED_BEGIN
 

@@ -23,9 +23,16 @@ struct VsglGeneratePush {
   // (shared/vsgl_allocation.h), and `count` only bounds them; 0: records [0, count).
   uint ranged;
   uint view;
+  // > 0: kernels are shrunk until their mean lies within this many standard deviations of the
+  // surface under their centre (gi::Settings::surfaceTolerance); 0: kernels as the rule sizes
+  // them.
+  float surfaceTolerance;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 SHARED_END
 
-SHARED_ASSERT_SIZE(VsglGeneratePush, 64);
+SHARED_ASSERT_SIZE(VsglGeneratePush, 80);
 #endif

@@ -1,6 +1,7 @@
 // The error budget's CPU stages (gi/truth/error_budget.h): kernel weights that tile exactly
-// read 1, the numeric SG stage agrees with the analytic twin where that twin is accurate, and
-// the regions find the floor under a lit floor and the floor-wall lines.
+// read 1, the numeric SG stage agrees with the analytic twin where that twin is accurate, area
+// visibility is what a kernel's own VPLs see, the flat share is the flat VSGLs' light, and the
+// regions find the floor under a lit floor and the floor-wall lines.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -145,4 +146,84 @@ TEST(ErrorBudget, RegionsFindTheLitFloorAndTheContactLines) {
   EXPECT_EQ(regions[size_t{35} * 64 + 10], truth::BudgetRegion::Coplanar);
   EXPECT_EQ(regions[size_t{14} * 64 + 4], truth::BudgetRegion::Rest);
   EXPECT_EQ(regions[size_t{34} * 64 + 2], truth::BudgetRegion::Contact);
+}
+
+// Area visibility: one VSGL whose kernel covers a 16^2 RSM whose left half of VPLs lies on the
+// Cornell box's floor at one point and whose right half at another, the tall box between them
+// for part of the room. The one-ray stage is all or nothing per pixel (one VSGL); the area stage
+// is what the two points see, weighted by their transfer: the full unshadowed light where both
+// see the receiver, none where neither does, and a share strictly between where one does. It
+// never exceeds the unshadowed light.
+TEST(ErrorBudget, AreaVisibilityIsWhatTheKernelsOwnVplsSee) {
+  const engine::Scene scene = engine::makeBuiltinScene("cornell");
+  const engine::View view = engine::cameraView(scene.cameras.at(0), 48, 27);
+  const truth::EmbreeScene rays(scene);
+  const engine::Bounds b = scene.bounds();
+  const glm::dvec3 lo = b.min, size = b.max - b.min;
+  const glm::dvec3 left = lo + size * glm::dvec3(0.15, 0.0, 0.5);
+  const glm::dvec3 right = lo + size * glm::dvec3(0.85, 0.0, 0.5);
+  std::vector<truth::Vpl> vpls = uniformVpls();
+  for (truth::Vpl& v : vpls) {
+    v.position = v.texel % kRsm < kRsm / 2 ? left : right;
+    v.area = 1e-4;
+  }
+  gpu::Vsgl vsgl = kernelVsgl({0.5f, 0.5f}, 4.0f, 0.5f * kRsm * kRsm);
+  vsgl.diffuse.meanVariance = glm::vec4(glm::vec3(0.5 * (left + right)), 0.01f);
+  vsgl.visibilityPoint = glm::vec4(glm::vec3(left), 1.0f);
+  truth::VsglStageSettings settings;
+  settings.samplesPerLobe = 16;
+  settings.kernelVpls = &vpls;
+  settings.rsmSize = kRsm;
+  const truth::VsglStageImages stages = truth::vsglStages(scene, rays, view, {vsgl}, settings);
+  ASSERT_EQ(stages.areaVisible.size(), stages.unshadowed.size());
+  size_t all = 0, none = 0, part = 0;
+  for (size_t i = 0; i < stages.unshadowed.size(); ++i) {
+    const double u = stages.unshadowed[i].g, a = stages.areaVisible[i].g, n = stages.numeric[i].g;
+    if (!(u > 0.0)) continue;
+    EXPECT_TRUE(n == 0.0 || n == u) << "pixel " << i;  // one ray: all or nothing
+    EXPECT_GE(a, 0.0);
+    EXPECT_LE(a, u * (1.0 + 1e-12)) << "pixel " << i;
+    all += a >= u * (1.0 - 1e-12);
+    none += a == 0.0;
+    part += a > 0.0 && a < u * (1.0 - 1e-12);
+  }
+  std::printf("receivers lit by both points %zu, by neither %zu, by one %zu\n", all, none, part);
+  EXPECT_GT(all, 50u);
+  EXPECT_GT(part, 20u);
+  EXPECT_GT(none, 0u);
+}
+
+// The flat share of the unshadowed SG image is the image of the flat VSGLs alone: a flat floor
+// VSGL (sharpness VSGL_FLAT_SHARPNESS) is counted whole, a corner's (VSGL_CORNER_SHARPNESS) not.
+TEST(ErrorBudget, FlatShareIsTheFlatVsglsLight) {
+  const engine::Scene scene = engine::makeBuiltinScene("cornell");
+  const engine::View view = engine::cameraView(scene.cameras.at(0), 32, 18);
+  const truth::EmbreeScene rays(scene);
+  const engine::Bounds b = scene.bounds();
+  const glm::vec3 lo = b.min, size = b.max - b.min;
+  gpu::Vsgl flat{}, corner{};
+  flat.diffuse = testing_gpu::vsglLobe(lo + size * glm::vec3(0.4f, 0.001f, 0.4f), 0.01f, {0, 1, 0},
+                                       float(VSGL_FLAT_SHARPNESS), glm::vec3(2.0f));
+  corner.diffuse = testing_gpu::vsglLobe(lo + size * glm::vec3(0.05f, 0.05f, 0.5f), 0.01f,
+                                         {1, 1, 0}, float(VSGL_CORNER_SHARPNESS), glm::vec3(2.0f));
+  EXPECT_TRUE(truth::flatVsgl(flat));
+  EXPECT_FALSE(truth::flatVsgl(corner));
+  truth::VsglStageSettings settings;
+  settings.samplesPerLobe = 8;
+  const truth::VsglStageImages both =
+      truth::vsglStages(scene, rays, view, {flat, corner}, settings);
+  // The corner without power beside the flat VSGL keeps the numeric integration's per-VSGL
+  // sample patterns the same in both runs.
+  gpu::Vsgl dark = corner;
+  dark.diffuse.power = glm::vec4(0.0f);
+  const truth::VsglStageImages alone = truth::vsglStages(scene, rays, view, {flat, dark}, settings);
+  EXPECT_TRUE(both.areaVisible.empty());  // no kernel VPLs given
+  double flatLight = 0.0, cornerLight = 0.0;
+  for (size_t i = 0; i < both.unshadowed.size(); ++i) {
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(both.unshadowedFlat[i][c], alone.unshadowed[i][c]);
+    flatLight += both.unshadowedFlat[i].g;
+    cornerLight += both.unshadowed[i].g - both.unshadowedFlat[i].g;
+  }
+  EXPECT_GT(flatLight, 0.0);
+  EXPECT_GT(cornerLight, 0.0);
 }

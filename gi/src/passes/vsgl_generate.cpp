@@ -53,6 +53,9 @@ void VsglGenerator::dispatch(VkCommandBuffer cmd, VsglAttributes& attributes, co
   if (!(settings.kernelScale >= 1.0f))
     throw engine::Error("VSGL kernel scale K = " + std::to_string(settings.kernelScale) +
                         " must be >= 1");
+  if (!(settings.surfaceTolerance >= 0.0f))
+    throw engine::Error("VSGL surface tolerance " + std::to_string(settings.surfaceTolerance) +
+                        " must be >= 0");
   if (settings.rule > VSGL_RULE_POINT)
     throw engine::Error("VSGL rule " + std::to_string(settings.rule) +
                         " is none of Tok15, modified FIS and VPLs");
@@ -71,6 +74,7 @@ void VsglGenerator::dispatch(VkCommandBuffer cmd, VsglAttributes& attributes, co
   push.perspective = view.perspective ? 1u : 0u;
   push.ranged = ranges ? 1u : 0u;
   push.view = rangeIndex;
+  push.surfaceTolerance = point ? 0.0f : settings.surfaceTolerance;
   using engine::Binding;
   VkSampler s = sampler_.handle();
   program_.dispatch(

@@ -17,6 +17,9 @@ struct VsglSettings {
   // The record index of the first VSGL written: the views of a point light write their VSGLs
   // one after another into the same buffer. first + count <= maxCount.
   uint32_t first = 0;
+  // > 0: kernels that leave their surface are shrunk (VsglGeneratePush::surfaceTolerance);
+  // VSGL_RULE_POINT reads one texel and ignores it.
+  float surfaceTolerance = 0.0f;
 };
 
 class VsglGenerator {

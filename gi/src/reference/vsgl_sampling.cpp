@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "reference/mip_reference.h"
+#include "reference/vsgl_emitter.h"
 
 namespace gi {
 
@@ -266,9 +267,45 @@ double texelPatchArea(const TexelPatch& patch, glm::dvec3 offset, glm::dvec3 nor
   return patch.texelArea * c * c * c * glm::dot(offset, offset) / cosine;
 }
 
+bool kernelOffSurface(const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, glm::dvec2 x,
+                      double level, glm::dvec3 surface, double tolerance) {
+  const double w = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POWER], x, level).w +
+                   sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POWER], x, level).w;
+  const glm::dvec3 axis(sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_AXIS], x, level));
+  if (!(w > 0.0) || !(glm::dot(axis, axis) > 0.0)) return false;
+  const glm::dvec4 sums = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POSITION], x, level) +
+                          sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POSITION], x, level);
+  const glm::dvec3 mean = glm::dvec3(sums) / w;
+  const double variance = std::max(sums.w / w - glm::dot(mean, mean), 0.0) / 2.0;
+  const double diffuseWeight = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POWER], x, level).w;
+  const double planarity = diffuseWeight > 0.0
+                               ? vsglPlanarity(banerjeeSharpness(glm::length(axis) / diffuseWeight))
+                               : 0.0;
+  const double h = planarity * glm::dot(mean - surface, glm::normalize(axis));
+  return h * h > tolerance * tolerance * variance;
+}
+
+double surfaceLevel(const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, glm::dvec2 x,
+                    double level, glm::dvec3 surface, double tolerance) {
+  double lo = 0.0;
+  while (lo < level) {
+    double hi = std::min(lo + VSGL_SURFACE_SCAN_STEP, level);
+    if (kernelOffSurface(attributes, x, hi, surface, tolerance)) {
+      for (int step = 0; step < VSGL_SURFACE_BISECTION_STEPS; ++step) {
+        const double mid = 0.5 * (lo + hi);
+        (kernelOffSurface(attributes, x, mid, surface, tolerance) ? hi : lo) = mid;
+      }
+      return lo;
+    }
+    lo = hi;
+  }
+  return level;
+}
+
 std::vector<gpu::Vsgl> generateVsglsReference(
     const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, const ScalarPyramid& pdf,
-    glm::dvec3 origin, uint32_t n, double k, uint32_t rule, const TexelPatch& patch) {
+    glm::dvec3 origin, uint32_t n, double k, uint32_t rule, const TexelPatch& patch,
+    double surfaceTolerance) {
   const double top = topMean(pdf);
   const uint32_t texelCount = pdf.size * pdf.size;
   std::vector<gpu::Vsgl> vsgls(n);
@@ -277,9 +314,19 @@ std::vector<gpu::Vsgl> generateVsglsReference(
     const bool modified = rule == VSGL_RULE_MODIFIED, point = rule == VSGL_RULE_POINT;
     // A VPL reads its texel alone: level 0 at the texel's centre.
     if (point) warp.x = (glm::dvec2(warp.texel) + 0.5) / double(pdf.size);
-    const double level = point      ? 0.0
-                         : modified ? modifiedFisLevel(pdf, warp.x, n, k)
-                                    : tok15Level(warp.density, n, k, pdf.size);
+    // The surface under x: the power-weighted level-0 position bilinearly around it, also the
+    // ISM's centre.
+    const double weight = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POWER], warp.x, 0.0).w +
+                          sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POWER], warp.x, 0.0).w;
+    const glm::dvec3 surface =
+        (glm::dvec3(sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POSITION], warp.x, 0.0)) +
+         glm::dvec3(sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POSITION], warp.x, 0.0))) /
+        std::max(weight, 1e-300);
+    double level = point      ? 0.0
+                   : modified ? modifiedFisLevel(pdf, warp.x, n, k)
+                              : tok15Level(warp.density, n, k, pdf.size);
+    if (!point && surfaceTolerance > 0.0 && weight > 0.0)
+      level = surfaceLevel(attributes, warp.x, level, surface, surfaceTolerance);
     const double filtered = top > 0.0 ? sampleTrilinear(pdf, warp.x, level) / top : 0.0;
     // An all-zero PDF has no mass to share: zero power rather than [T15]'s M F~ / 1. A VPL is
     // its texel's value over N p, the importance-sampling estimator, as modified FIS at l = 0.
@@ -309,14 +356,7 @@ std::vector<gpu::Vsgl> generateVsglsReference(
           float(area / (4.0 * std::numbers::pi));
     }
     vsgl.kernel = glm::vec4(glm::dvec4(warp.x, level, filtered));
-    // The ISM's centre: the power-weighted level-0 position bilinearly under x.
-    const double weight = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POWER], warp.x, 0.0).w +
-                          sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POWER], warp.x, 0.0).w;
-    const glm::dvec3 positions =
-        glm::dvec3(sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POSITION], warp.x, 0.0)) +
-        glm::dvec3(sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POSITION], warp.x, 0.0));
-    if (weight > 0.0)
-      vsgl.visibilityPoint = glm::vec4(glm::dvec4(origin + positions / weight, 1.0));
+    if (weight > 0.0) vsgl.visibilityPoint = glm::vec4(glm::dvec4(origin + surface, 1.0));
   }
   return vsgls;
 }

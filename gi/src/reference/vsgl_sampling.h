@@ -149,9 +149,25 @@ double texelPatchArea(const TexelPatch& patch, glm::dvec3 offset, glm::dvec3 nor
 // weights at x (w = 1; 0 where x sees no power). VSGL_RULE_POINT (the VPL baseline,
 // docs/techniques/vpl-baseline.md): the warped texel alone, at its centre and level 0, over N p;
 // both lobes' variance a / (4 pi), the disc of area a = texelPatchArea x max(1, M / (N p)) that the
-// VPL stands for.
+// VPL stands for. surfaceTolerance > 0 (filtered sampling only): each level is then lowered to
+// surfaceLevel's.
 std::vector<gpu::Vsgl> generateVsglsReference(
     const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, const ScalarPyramid& pdf,
-    glm::dvec3 origin, uint32_t n, double k, uint32_t rule, const TexelPatch& patch = {});
+    glm::dvec3 origin, uint32_t n, double k, uint32_t rule, const TexelPatch& patch = {},
+    double surfaceTolerance = 0.0);
+
+// Kernels that leave their surface (docs/techniques/vsgl-generation.md): whether the kernel's
+// mean at (x, level), both lobes' weights together, lies more than `tolerance` standard
+// deviations (per axis, the lobe variance's) off the plane through `surface` (relative to the
+// RSM origin, as the position sums) with the diffuse lobe's mean normal, the offset weighted by
+// the kernel's planarity (vsglPlanarity of its diffuse sharpness: a corner is not held to a
+// plane); false without diffuse axis or weight.
+bool kernelOffSurface(const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, glm::dvec2 x,
+                      double level, glm::dvec3 surface, double tolerance);
+// The lowest level at which the kernel is off its surface, or `level` if it is not up to there:
+// a scan up from 0 in steps of VSGL_SURFACE_SCAN_STEP, then VSGL_SURFACE_BISECTION_STEPS
+// bisection steps within the first step that is off (the lower end of the final interval).
+double surfaceLevel(const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, glm::dvec2 x,
+                    double level, glm::dvec3 surface, double tolerance);
 
 }  // namespace gi
