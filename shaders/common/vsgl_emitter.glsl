@@ -10,11 +10,7 @@
 
 #include "shared/vsgl.h"
 #include "sg_lighting.glsl"
-
-// beta: smoothstep from VSGL_CORNER_SHARPNESS (0) to VSGL_FLAT_SHARPNESS (1).
-float vsglPlanarity(float diffuseSharpness) {
-  return smoothstep(float(VSGL_CORNER_SHARPNESS), float(VSGL_FLAT_SHARPNESS), diffuseSharpness);
-}
+#include "vsgl_lobes.glsl"  // vsglPlanarity
 
 // The planarity of a VSGL's emitter: beta of its diffuse lobe, 0 (the SG emitter) when `planar`
 // is off or the VSGL has no diffuse weight or axis.

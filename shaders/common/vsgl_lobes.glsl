@@ -67,6 +67,13 @@ void lobeFromMeanAxis(vec3 meanAxis, out vec3 axis, out float sharpness) {
 // clusters alike: mean (relative to the RSM origin, moved to world by `origin`), per-axis
 // variance (never negative), axis and Banerjee sharpness (axis length 0 -> isotropic), power.
 // No weight (w = 0) gives a powerless lobe at the origin.
+// Planar emitters' beta (common/vsgl_emitter.glsl), read from a diffuse lobe's sharpness:
+// smoothstep from VSGL_CORNER_SHARPNESS (0) to VSGL_FLAT_SHARPNESS (1). Here because generation
+// reads it too (kernels that leave their surface).
+float vsglPlanarity(float diffuseSharpness) {
+  return smoothstep(float(VSGL_CORNER_SHARPNESS), float(VSGL_FLAT_SHARPNESS), diffuseSharpness);
+}
+
 VsglLobe buildVsglLobe(vec4 power, vec4 position, vec4 axis, vec3 origin) {
   VsglLobe lobe;
   float w = power.w;

@@ -96,8 +96,7 @@ bool offSurface(vec2 x, float level, vec3 surface) {
   vec3 unitAxis;
   float sharpness;
   lobeFromMeanAxis(axis / wd, unitAxis, sharpness);
-  // vsglPlanarity of common/vsgl_emitter.glsl, which needs the shading's includes.
-  float beta = smoothstep(float(VSGL_CORNER_SHARPNESS), float(VSGL_FLAT_SHARPNESS), sharpness);
+  float beta = vsglPlanarity(sharpness);
   float h = beta * dot(mean - surface, unitAxis);
   float t = pc.surfaceTolerance;
   return h * h > t * t * variance;

@@ -269,18 +269,16 @@ double texelPatchArea(const TexelPatch& patch, glm::dvec3 offset, glm::dvec3 nor
 
 bool kernelOffSurface(const std::array<VectorPyramid, VSGL_ATTR_COUNT>& attributes, glm::dvec2 x,
                       double level, glm::dvec3 surface, double tolerance) {
-  const double w = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POWER], x, level).w +
-                   sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POWER], x, level).w;
+  const double diffuseWeight = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POWER], x, level).w;
+  const double w =
+      diffuseWeight + sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POWER], x, level).w;
   const glm::dvec3 axis(sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_AXIS], x, level));
-  if (!(w > 0.0) || !(glm::dot(axis, axis) > 0.0)) return false;
+  if (!(diffuseWeight > 0.0) || !(glm::dot(axis, axis) > 0.0)) return false;
   const glm::dvec4 sums = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POSITION], x, level) +
                           sampleTrilinear(attributes[VSGL_ATTR_SPECULAR_POSITION], x, level);
   const glm::dvec3 mean = glm::dvec3(sums) / w;
   const double variance = std::max(sums.w / w - glm::dot(mean, mean), 0.0) / 2.0;
-  const double diffuseWeight = sampleTrilinear(attributes[VSGL_ATTR_DIFFUSE_POWER], x, level).w;
-  const double planarity = diffuseWeight > 0.0
-                               ? vsglPlanarity(banerjeeSharpness(glm::length(axis) / diffuseWeight))
-                               : 0.0;
+  const double planarity = vsglPlanarity(banerjeeSharpness(glm::length(axis) / diffuseWeight));
   const double h = planarity * glm::dot(mean - surface, glm::normalize(axis));
   return h * h > tolerance * tolerance * variance;
 }
