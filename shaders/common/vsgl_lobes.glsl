@@ -47,6 +47,17 @@ void vplSpecularLobe(vec3 n, vec3 toLight, float roughness, out vec3 axis, out f
   sharpness = lambdaH * max(dot(h, n), 0.0) / max(4.0 * abs(dot(toLight, h)), 1e-8);
 }
 
+// The share of a VPL's glossy lobe that the VSGL's glossy lobe carries; the rest joins the
+// diffuse lobe. A cluster's lobe is one SG, so a mirror's narrow reflections and a rough
+// surface's broad ones mixed in one kernel (a checker of polished and matte tiles) make one lobe
+// of middling sharpness that sends the mirror's light where no mirror does; a reflection no
+// narrower than the Lambert lobe is emitted as the Lambert lobe instead. Smoothstep in log
+// sharpness from VSGL_FLAT_SHARPNESS (0) to VSGL_GLOSSY_SHARPNESS_RATIO times it (1).
+float vplGlossyShare(float sharpness) {
+  float x = log(max(sharpness, 1e-30) / float(VSGL_FLAT_SHARPNESS)) / log(float(VSGL_GLOSSY_SHARPNESS_RATIO));
+  return smoothstep(0.0, 1.0, x);
+}
+
 // Banerjee's vMF sharpness estimate from a mean resultant length r (section 3.3),
 // r (3 - r^2) / (1 - r^2), clamped to VSGL_MAX_SHARPNESS (r -> 1: one VPL or identical axes).
 float banerjeeSharpness(float r) {

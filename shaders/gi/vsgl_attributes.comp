@@ -50,17 +50,22 @@ void main() {
     vec3 y = position.xyz;
     float yy = dot(y, y);
     vec3 toLight = pc.perspective != 0u ? -normalize(y) : -pc.axis.xyz;
-    float wd = luminance(diffuse.rgb);
-    float ws = kSpecular ? luminance(specular.rgb) : 0.0;
-    out_[VSGL_ATTR_DIFFUSE_POWER] = vec4(diffuse.rgb, wd);
+    // The PDF weighs the texel's whole power, whichever lobe carries it.
+    float pdf = luminance(diffuse.rgb) + (kSpecular ? luminance(specular.rgb) : 0.0);
+    vec3 specAxis = n;
+    float specSharpness = 0.0;
+    if (kSpecular) vplSpecularLobe(n, toLight, specular.a, specAxis, specSharpness);
+    // A broad reflection is emitted with the diffuse lobe (vplGlossyShare).
+    vec3 glossy = kSpecular ? vplGlossyShare(specSharpness) * specular.rgb : vec3(0.0);
+    vec3 lambert = diffuse.rgb + (kSpecular ? specular.rgb - glossy : vec3(0.0));
+    float wd = luminance(lambert);
+    float ws = luminance(glossy);
+    out_[VSGL_ATTR_DIFFUSE_POWER] = vec4(lambert, wd);
     out_[VSGL_ATTR_DIFFUSE_POSITION] = vec4(wd * y, wd * yy);
-    out_[VSGL_ATTR_DIFFUSE_AXIS] = vec4(wd * float(VSGL_DIFFUSE_LOBE_LENGTH) * n, wd + ws);
+    out_[VSGL_ATTR_DIFFUSE_AXIS] = vec4(wd * float(VSGL_DIFFUSE_LOBE_LENGTH) * n, pdf);
     if (kSpecular) {
-      vec3 specAxis;
-      float specSharpness;
-      vplSpecularLobe(n, toLight, specular.a, specAxis, specSharpness);
       float rs = banerjeeMeanLength(specSharpness);
-      out_[VSGL_ATTR_SPECULAR_POWER] = vec4(specular.rgb, ws);
+      out_[VSGL_ATTR_SPECULAR_POWER] = vec4(glossy, ws);
       out_[VSGL_ATTR_SPECULAR_POSITION] = vec4(ws * y, ws * yy);
       out_[VSGL_ATTR_SPECULAR_AXIS] = vec4(ws * rs * specAxis, 0.0);
     }

@@ -21,6 +21,12 @@
 // VSGL_DIFFUSE_LOBE_LENGTH), where the cluster is flat.
 #define VSGL_CORNER_SHARPNESS 1.3805819183117323
 #define VSGL_FLAT_SHARPNESS 2.2925040
+// Broad reflections join the diffuse lobe (docs/techniques/vsgl-generation.md, "Broad
+// reflections"): a VPL's glossy lobe of sharpness at or below the Lambert lobe's
+// (VSGL_FLAT_SHARPNESS) is emitted with the diffuse lobe, one at or above this many times it (half
+// the Lambert lobe's angular width, 1 / sqrt(lambda)) with the glossy lobe, and one between is
+// shared by a smoothstep in log sharpness.
+#define VSGL_GLOSSY_SHARPNESS_RATIO 4.0
 // Sharpness clamp: Banerjee's estimate diverges as the mean length -> 1 (one VPL, or identical
 // axes); 2^41 keeps products with other sharpnesses finite in fp32 (section 12, case 7).
 #define VSGL_MAX_SHARPNESS 2199023255552.0

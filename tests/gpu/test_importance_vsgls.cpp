@@ -88,9 +88,9 @@ TEST_F(ImportanceVsgls, CameraPixelsBecomeImportanceVsglsWithoutTouchingThePaddi
     EXPECT_LT(v[i].kernel.y * pyramidSize, float(height)) << "VSGL " << i;
     EXPECT_TRUE(std::isfinite(v[i].diffuse.axisSharpness.w) &&
                 std::isfinite(v[i].specular.axisSharpness.w));
-    total += v[i].diffuse.power.g;
+    total += v[i].diffuse.power.g + v[i].specular.power.g;
   }
-  for (const auto& t : ref) importanceSum += t.diffuseFlux.g;
+  for (const auto& t : ref) importanceSum += t.diffuseFlux.g + t.specularFlux.g;
   EXPECT_NEAR(total, importanceSum, 0.02 * importanceSum);
 }
 

@@ -203,9 +203,13 @@ VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 
   // against sqrt(d^2 + v): h / d far away, h / sqrt(v) inside the cluster, so that a receiver
   // in the plane gets f = 1 - beta however close it is to the mean.
   const double reach = std::sqrt(distance2 + variance);
-  const double foreshortening =
-      emission.flatness +
-      (reach > 0.0 ? std::max(-glm::dot(emission.plane, toLight), 0.0) / reach : 0.0);
+  const double elevation =
+      reach > 0.0 ? std::max(-glm::dot(emission.plane, toLight), 0.0) / reach : 0.0;
+  const double foreshortening = emission.flatness + elevation;
+  // The intensity's factor: the cosine for a Lambertian lobe; a reflection's radiance rises as
+  // its projected area falls, so it is only cut at the plane (vsgl_emitter.h).
+  const double intensity =
+      emission.lambertian ? foreshortening : (elevation > 0.0 ? 1.0 : emission.flatness);
   const double spotVariance =
       std::max({foreshortening * variance, distance2 * kVarianceFloorScale, kMinVariance});
   // The planar Gaussian spot seen from the receiver, G(w; l / d, d^2 / v_f) (section 4.1). At
@@ -229,10 +233,10 @@ VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 
 
   VsglIncomingRadiance radiance;
   radiance.sg = sgProduct(emitted, spot);
-  // E = Phi f / (2 pi v_f N) (section 3.4 with N for S): 2-D Gaussian times the emission's
+  // E = Phi k / (2 pi v_f N) (section 3.4 with N for S): 2-D Gaussian times the emission's
   // normalisation, so that the spot's integral 2 pi v_f / d^2 leaves I(-w_l) / d^2.
   radiance.scale =
-      glm::dvec3(lobe.power) * (keep * foreshortening / (2.0 * kPi * spotVariance * normalisation));
+      glm::dvec3(lobe.power) * (keep * intensity / (2.0 * kPi * spotVariance * normalisation));
   return radiance;
 }
 
@@ -248,7 +252,6 @@ glm::dvec3 vsglDiffuseRadiance(const gpu::VsglLobe& lobe, glm::dvec3 receiver, g
 // Glossy (section 4.4).
 
 namespace {
-
 
 // Weight of the sharp-light terms, w = lambda / (lambda + lambda_r + kWideLightBias): the
 // bias keeps w small for a wide light on a rough surface (lambda_r -> 0 as alpha -> 1), where
@@ -323,7 +326,6 @@ double sgGgxPeakCorrection(double beta) {
   }
   return kappa * (1.0 + beta);
 }
-
 
 glm::dvec2 ggxSpecularAlbedo(double nv, double alpha) {
   const double last = double(kGgxAlbedoTableSize - 1);

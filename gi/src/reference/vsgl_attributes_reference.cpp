@@ -24,14 +24,17 @@ std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(con
     if (!(p.w > 0.0f && finite(p) && finite(d) && finite(s))) continue;
     const glm::dvec3 y(p), n = rsm.surface.samples[i].normal;
     const glm::dvec3 toLight = view.perspective ? -glm::normalize(y) : -glm::dvec3(view.axis);
-    const double wd = luminance709(glm::dvec3(d)), ws = luminance709(glm::dvec3(s));
+    const double pdf = luminance709(glm::dvec3(d)) + luminance709(glm::dvec3(s));
     const SgLobe lobe = specularLobe(n, toLight, static_cast<double>(s.a));
+    const glm::dvec3 glossy = glossyShare(lobe.sharpness) * glm::dvec3(s);
+    const glm::dvec3 lambert = glm::dvec3(d) + glm::dvec3(s) - glossy;
+    const double wd = luminance709(lambert), ws = luminance709(glossy);
     const double rs = banerjeeMeanLength(lobe.sharpness);
     const double yy = glm::dot(y, y);
-    out[VSGL_ATTR_DIFFUSE_POWER][i] = glm::dvec4(glm::dvec3(d), wd);
+    out[VSGL_ATTR_DIFFUSE_POWER][i] = glm::dvec4(lambert, wd);
     out[VSGL_ATTR_DIFFUSE_POSITION][i] = glm::dvec4(wd * y, wd * yy);
-    out[VSGL_ATTR_DIFFUSE_AXIS][i] = glm::dvec4(wd * VSGL_DIFFUSE_LOBE_LENGTH * n, wd + ws);
-    out[VSGL_ATTR_SPECULAR_POWER][i] = glm::dvec4(glm::dvec3(s), ws);
+    out[VSGL_ATTR_DIFFUSE_AXIS][i] = glm::dvec4(wd * VSGL_DIFFUSE_LOBE_LENGTH * n, pdf);
+    out[VSGL_ATTR_SPECULAR_POWER][i] = glm::dvec4(glossy, ws);
     out[VSGL_ATTR_SPECULAR_POSITION][i] = glm::dvec4(ws * y, ws * yy);
     out[VSGL_ATTR_SPECULAR_AXIS][i] = glm::dvec4(ws * rs * lobe.axis, 0.0);
   }

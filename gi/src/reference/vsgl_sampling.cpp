@@ -235,6 +235,13 @@ SgLobe specularLobe(glm::dvec3 n, glm::dvec3 omegaIn, double roughness) {
   return lobe;
 }
 
+double glossyShare(double sharpness) {
+  const double x = std::log(std::max(sharpness, 1e-30) / VSGL_FLAT_SHARPNESS) /
+                   std::log(VSGL_GLOSSY_SHARPNESS_RATIO);
+  const double t = std::clamp(x, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
 gpu::VsglLobe buildVsglLobe(const LobeSums& sums, glm::dvec3 origin) {
   gpu::VsglLobe lobe{};
   const double w = sums.power.w;

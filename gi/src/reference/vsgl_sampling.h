@@ -114,6 +114,11 @@ struct SgLobe {
 // visible normal h; sharpness = lambda_h h.n / (4 |omegaIn . h|), lambda_h = 2 / alpha^2 - 2.
 SgLobe specularLobe(glm::dvec3 n, glm::dvec3 omegaIn, double roughness);
 
+// The share of a VPL's glossy lobe of `sharpness` that the VSGL's glossy lobe carries, the rest
+// joining the diffuse lobe (docs/techniques/vsgl-generation.md, "Broad reflections"): smoothstep
+// in log sharpness from VSGL_FLAT_SHARPNESS (0) to VSGL_GLOSSY_SHARPNESS_RATIO times it (1).
+double glossyShare(double sharpness);
+
 // Sums of one lobe over a cluster (sections 3.2 and 3.5), in the channel layout of
 // shaders/shared/vsgl_attributes.h: power = (Phi rgb, W), position = (P1, P2) relative to the
 // RSM origin, axis.xyz = A. Any common scale works for the ratios; `power` is the cluster power.
