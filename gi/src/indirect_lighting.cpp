@@ -415,8 +415,11 @@ void IndirectLighting::Impl::record(VkCommandBuffer cmd, const FrameInput& in, F
     const engine::Light light = engineLight(in.lights[i]);
     uint32_t face = 0;
     for (const RsmView& view : makeRsmViews(bounds, light, settings.rsmSize))
-      views.push_back(
-          {view, light, i, {sceneIn, in.lights[i], face++, plan.specularLobes, settings.pdf}});
+      views.push_back({view,
+                       light,
+                       i,
+                       {sceneIn, in.lights[i], face++, plan.specularLobes,
+                        settings.broadReflections, settings.pdf}});
   }
 
   // Every view's pyramids exist before the deferred setup that gives new images their layout.
@@ -528,8 +531,8 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
                     settings.surfaceTolerance};
   for (const LightView& v : views) vsglIn.views.push_back(v.inputs);
   if (brsm)
-    vsglIn.importance = {cameraIn, settings.brsm.importanceCount, settings.rule,
-                         plan.specularLobes};
+    vsglIn.importance = {cameraIn, settings.brsm.importanceCount, settings.rule, plan.specularLobes,
+                         settings.broadReflections};
   plan.reuse.vsgls = !evolving && last.vsgls == vsglIn;
   if (plan.reuse.vsgls) {  // and with them all they are made from
     plan.reuse.importance = brsm;
@@ -541,7 +544,7 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
       // The importance VSGLs keep their kernels as sized: kept on their surfaces they flickered
       // more under a moving camera for little accuracy (docs/techniques/vsgl-generation.md).
       importance->record(cmd, gbuffer, camera, {settings.brsm.importanceCount, 1.0f, rule}, mips,
-                         &profiler, plan.specularLobes);
+                         &profiler, plan.specularLobes, settings.broadReflections);
       last.importance = vsglIn.importance;
     }
     // One RSM at a time, each view with its attribute pyramids and PDF.
@@ -565,7 +568,8 @@ const engine::Buffer& IndirectLighting::Impl::recordPasses(
         rsm.record(cmd, *scene, rasterizer, resolve, view, views[v].light, &profiler,
                    &lightViewMap(v));
         lightViewMapInputs[v] = views[v].inputs;
-        pyramids.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler, plan.specularLobes);
+        pyramids.record(cmd, rsm.vpls(), rsm.surface(), view, mips, &profiler, plan.specularLobes,
+                        settings.broadReflections);
         kept = views[v].inputs;
         if (!ownPyramids) kept.reset();  // the next view overwrites them
       }

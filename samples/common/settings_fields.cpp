@@ -126,6 +126,9 @@ std::vector<SettingField> makeTable() {
             "shade the glossy (GGX) term; off, shading costs about 40 % less"),
       onOff(kVsgls, "planarEmitters", SETTING_ACCESS(planarEmitters),
             "flat VSGLs emit nothing below or along their plane; off = plain SG emitters"),
+      onOff(kVsgls, "broadReflections", SETTING_ACCESS(broadReflections),
+            "reflections as broad as the Lambert lobe join the diffuse lobe; off = every "
+            "reflection glossy (steadier, less accurate on mirror-and-matte mixtures)"),
       number(kFloat, kVsgls, "surfaceTolerance", "", 0.0f, 10.0f, kPlain,
              SETTING_ACCESS(surfaceTolerance),
              "kernels whose mean leaves their surface by more than this many standard "

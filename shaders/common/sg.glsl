@@ -60,38 +60,32 @@ float sgInnerProduct(Sg a, Sg b, float logScale) {
 
 // The positional Gaussian of a VSGL lobe seen from `receiver` (section 4.1): the planar spot
 // G(w; l / d, d^2 / v_f), v_f = max(f v, d^2 / 2^41, FLT_MIN), so that single-texel
-// (zero-variance) lobes and a receiver at the mean stay finite, with logAmplitude = log(k / v_f)
-// (-inf where k = 0). f = plane.w + (plane.xyz . (receiver - mean))^+ / sqrt(d^2 + v) is the
+// (zero-variance) lobes and a receiver at the mean stay finite, with logAmplitude = log(f / v_f)
+// (-inf where f = 0). f = plane.w + (plane.xyz . (receiver - mean))^+ / sqrt(d^2 + v) is the
 // emitter's foreshortening (common/vsgl_emitter.glsl: the elevation's cosine, measured against
-// the cluster's own size near it); plane = (0, 0, 0, 1), f = 1, for the SG emitter of section 3.4.
-// k is the emitter's intensity factor: f for a Lambertian lobe (`lambertian`), whose intensity
-// falls with the cosine; for a reflection, whose radiance rises as its projected area falls,
-// 1 above the plane and plane.w on or below it (the cut without the cosine). At d = 0 the
-// sharpness is 0 and the axis (`fallbackAxis`) irrelevant (case 12).
-Sg vsglSpot(vec3 mean, float variance, vec3 receiver, vec4 plane, vec3 fallbackAxis,
-            bool lambertian) {
+// the cluster's own size near it); plane = (0, 0, 0, 1), f = 1, for the SG emitter of section 3.4. At d = 0 the sharpness is 0 and the axis (`fallbackAxis`) irrelevant (case 12).
+Sg vsglSpot(vec3 mean, float variance, vec3 receiver, vec4 plane, vec3 fallbackAxis) {
   vec3 toLight = mean - receiver;
   float distance2 = dot(toLight, toLight);
   float distance = sqrt(distance2);
   float reach = sqrt(distance2 + variance);
-  float elevation = reach > 0.0 ? max(-dot(plane.xyz, toLight), 0.0) / reach : 0.0;
-  float foreshortening = plane.w + elevation;
-  float intensity = lambertian ? foreshortening : (elevation > 0.0 ? 1.0 : plane.w);
+  float foreshortening =
+      plane.w + (reach > 0.0 ? max(-dot(plane.xyz, toLight), 0.0) / reach : 0.0);
   float spotVariance =
       max(max(foreshortening * variance, distance2 * kSgVarianceFloorScale), kSgFltMin);
-  float ratio = intensity / spotVariance;  // <= 1 / FLT_MIN: finite
+  float ratio = foreshortening / spotVariance;  // <= 1 / FLT_MIN: finite
   return Sg(distance > 0.0 ? toLight / distance : fallbackAxis, distance2 / spotVariance,
             ratio > 0.0 ? log(ratio) : -1.0 / 0.0);
 }
 
-// Incoming radiance at `receiver` from a VSGL's glossy lobe or an SG emitter (section 4.1): the
-// emitted lobe seen back along -axis times the lobe's spot (vsglSpot, a reflection's cut). The
-// result's logAmplitude includes log E = logScale + log(k / v_f), where logScale = log(power / (2 pi N)) is per lobe (computed
+// Incoming radiance at `receiver` from a VSGL lobe (section 4.1): the emitted lobe seen back
+// along -axis times the lobe's spot (vsglSpot). The result's logAmplitude includes
+// log E = logScale + log(f / v_f), where logScale = log(power / (2 pi N)) is per lobe (computed
 // apart so loops can hoist it); N = S(sharpness) for the SG emitter, the emission's
 // normalisation for a planar one (common/vsgl_emitter.glsl).
 Sg vsglIncomingRadiance(vec3 mean, float variance, vec3 axis, float sharpness, float logScale,
                         vec3 receiver, vec4 plane) {
-  Sg spot = vsglSpot(mean, variance, receiver, plane, -axis, false);
+  Sg spot = vsglSpot(mean, variance, receiver, plane, -axis);
   Sg radiance = sgProduct(Sg(-axis, sharpness, 0.0), spot);
   radiance.logAmplitude += logScale;
   return radiance;

@@ -1,12 +1,10 @@
 // Planar emitters (docs/techniques/planar-emitters.md) in fp32: the emission of a VSGL's two
 // lobes. The double twin is gi/src/reference/vsgl_emitter.cpp; names follow it. A flat cluster
-// sends no light below its plane and is seen foreshortened. The diffuse lobe's radiant intensity
-//   I(w) = Phi G(w; xi, lambda_e) ((1 - beta) + beta (w . n)^+) / N
-// falls to 0 along the plane, as a Lambertian surface's; the glossy lobe's has a step at the
-// plane in place of (w . n)^+. The spot's variance is f v with the foreshortening
-// f = (1 - beta) + beta (w . n)^+ at the receiver's direction from the mean (common/sg.glsl
-// vsglSpot), and beta (planarity) runs smoothly from 0 (a corner) to 1 (flat) with the diffuse
-// lobe's sharpness. Include after the prerequisites of common/sg_lighting.glsl.
+// sends no light below or along its plane and is seen foreshortened: the radiant intensity is
+//   I(w) = Phi G(w; xi, lambda_e) ((1 - beta) + beta (w . n)^+) / N,
+// the spot's variance is f v with the same factor f at the receiver's direction from the mean
+// (common/sg.glsl vsglSpot), and beta (planarity) runs smoothly from 0 (a corner) to 1 (flat)
+// with the diffuse lobe's sharpness. Include after the prerequisites of common/sg_lighting.glsl.
 #ifndef SHADERS_COMMON_VSGL_EMITTER_GLSL
 #define SHADERS_COMMON_VSGL_EMITTER_GLSL
 
@@ -30,19 +28,17 @@ vec4 vsglEmitterPlane(vec3 diffuseAxis, float beta) {
   return beta > 0.0 ? vec4(beta * normalize(diffuseAxis), 1.0 - beta) : vec4(0.0, 0.0, 0.0, 1.0);
 }
 
-// N of a specular lobe: S(lambda) ((1 - beta) + beta F(lambda, (xi . n)^+)), F the share of the
-// SG above the plane ([T24] vmfUpperHemisphereFraction). Per lobe: the specular lobe keeps its
-// sharpness and is cut at the plane, not foreshortened: a reflection's radiant intensity
-// Phi D G F / (4 cos theta_i) has no cos theta_o (its radiance grows as 1 / cos theta_o), so a
-// mirror keeps its light towards the horizon. A lobe whose axis points below the plane (no RSM
-// makes one) is normalised as if it lay along the horizon, so that it loses what the cut
-// removes instead of being amplified.
+// N of a specular lobe: (1 - beta) S(lambda) + beta pi D(lambda, (xi . n)^+), D the [T24]
+// clamped-cosine integral. Per lobe: the specular lobe keeps its sharpness. A reflection leaves
+// above its surface; a lobe whose axis points below the plane (no RSM makes one) is normalised as
+// if it lay along the horizon, so that it loses what the cut removes instead of being amplified
+// by 1 / D, which has no floor (and no fp32 accuracy) there.
 float vsglSpecularNormalisation(VsglLobe lobe, vec4 plane) {
   float beta = 1.0 - plane.w;
   float sharpness = lobe.axisSharpness.w;
   float axisDotNormal = beta > 0.0 ? max(dot(lobe.axisSharpness.xyz, plane.xyz) / beta, 0.0) : 0.0;
-  float above = beta > 0.0 ? vmfUpperHemisphereFraction(sharpness, axisDotNormal) : 1.0;
-  return sgIntegral(sharpness) * (plane.w + beta * above);
+  return plane.w * sgIntegral(sharpness) +
+         beta * kSgPi * sgClampedCosineIntegralOverPi(sharpness, axisDotNormal);
 }
 
 // The diffuse lobe fits the Lambert lobe. Seen from afar (a sharp spot) a flat cluster's
@@ -76,7 +72,7 @@ float vsglCoplanarKeep(float sharpness, float spotSharpness, vec4 plane, vec3 no
 // logPower = log(power / (2 pi)): N depends on the receiver here.
 Sg vsglLambertianRadiance(vec3 mean, float variance, vec3 axis, float sharpness, float logPower,
                           vec3 receiver, vec3 normal, vec4 plane) {
-  Sg spot = vsglSpot(mean, variance, receiver, plane, -axis, true);
+  Sg spot = vsglSpot(mean, variance, receiver, plane, -axis);
   float emission = vsglLambertianSharpness(sharpness, spot.sharpness, plane);
   Sg radiance = sgProduct(Sg(-axis, emission, 0.0), spot);
   float keep = vsglCoplanarKeep(sharpness, spot.sharpness, plane, normal);

@@ -87,8 +87,7 @@ vec3 intensity(PointLight p, vec3 toward, float spread) {
   lobe.axisSharpness = vec4(p.axisSharpness.xyz, p.axisSharpness.w / (1.0 + p.axisSharpness.w * spread));
   float g = exp(lobe.axisSharpness.w * (dot(lobe.axisSharpness.xyz, toward) - 1.0));
   vec4 plane = vsglEmitterPlane(p.normal.xyz, p.normal.w);
-  // A reflection is cut at the plane, not foreshortened (vsglSpecularNormalisation).
-  float cut = dot(plane.xyz, toward) > 0.0 ? 1.0 : plane.w;
+  float cut = plane.w + max(dot(plane.xyz, toward), 0.0);
   return i + p.specularPower.rgb * (g * cut / vsglSpecularNormalisation(lobe, plane));
 }
 

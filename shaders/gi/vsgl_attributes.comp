@@ -55,8 +55,10 @@ void main() {
     vec3 specAxis = n;
     float specSharpness = 0.0;
     if (kSpecular) vplSpecularLobe(n, toLight, specular.a, specAxis, specSharpness);
-    // A broad reflection is emitted with the diffuse lobe (vplGlossyShare).
-    vec3 glossy = kSpecular ? vplGlossyShare(specSharpness) * specular.rgb : vec3(0.0);
+    // A broad reflection is emitted with the diffuse lobe (vplGlossyShare), unless the host
+    // keeps every reflection glossy (gi::Settings::broadReflections off).
+    float share = pc.broadReflections != 0u ? vplGlossyShare(specSharpness) : 1.0;
+    vec3 glossy = kSpecular ? share * specular.rgb : vec3(0.0);
     vec3 lambert = diffuse.rgb + (kSpecular ? specular.rgb - glossy : vec3(0.0));
     float wd = luminance(lambert);
     float ws = luminance(glossy);

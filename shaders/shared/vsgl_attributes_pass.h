@@ -9,7 +9,7 @@ struct VsglAttributesPush {
   vec4 axis;         // xyz = unit direction the light travels (used for directional lights)
   uvec2 size;        // RSM texels (a power-of-two square)
   uint perspective;  // 1 = spot: the direction to the light is -normalize(y)
-  uint pad;
+  uint broadReflections;  // 1: broad reflections join the diffuse lobe (vplGlossyShare)
 };
 
 SHARED_END

@@ -37,9 +37,10 @@ struct RsmRig {
   }
 
   // Level 0 of the attribute pyramids from the RSM, and their mips.
-  void buildAttributes(engine::Context& ctx) {
+  void buildAttributes(engine::Context& ctx, bool broadReflections = false) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-      attributes->record(cmd, rsm->vpls(), rsm->surface(), view, *mips);
+      attributes->record(cmd, rsm->vpls(), rsm->surface(), view, *mips, nullptr, true,
+                         broadReflections);
     });
   }
 

@@ -26,7 +26,12 @@ class VsglAttributesTest : public testing_gpu::GpuTest {
     rig_ = std::make_unique<testing_gpu::RsmRig>(ctx(), "cornell", kSize);
   }
 
-  void buildAttributes() { rig_->buildAttributes(ctx()); }
+  void buildAttributes(bool broadReflections = false) {
+    rig_->buildAttributes(ctx(), broadReflections);
+  }
+
+  // Level 0 of every pyramid against the twin; `glossy` gets the glossy lobe's total weight.
+  void checkLevelZero(bool broadReflections, double* glossy);
 
   std::unique_ptr<testing_gpu::RsmRig> rig_;
 };
@@ -56,13 +61,26 @@ TEST_F(VsglAttributesTest, TopLevelTimesTexelCountConservesRsmPower) {
   EXPECT_GT(topSpecular.g, 0.0);
 }
 
+// Both ways of Settings::broadReflections: the Cornell box's matte walls (roughness 0.9) and
+// glossy ones (0.2, 0.25) put texels at both ends of the glossy share.
 TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
-  buildAttributes();
+  double glossy[2] = {0.0, 0.0};
+  for (bool broad : {true, false}) {
+    SCOPED_TRACE(broad ? "broad reflections in the diffuse lobe" : "every reflection glossy");
+    checkLevelZero(broad, &glossy[broad]);
+  }
+  // The matte walls' reflections moved to the diffuse lobe, the glossy walls' stayed.
+  EXPECT_LT(glossy[true], 0.9 * glossy[false]);
+  EXPECT_GT(glossy[true], 0.0);
+}
+
+void VsglAttributesTest::checkLevelZero(bool broadReflections, double* glossy) {
+  buildAttributes(broadReflections);
   gi::RsmImages rsm{rig_->rsm->position().readbackRgba32f(ctx(), 0),
                     rig_->rsm->diffuseFlux().readbackRgba32f(ctx(), 0),
                     rig_->rsm->specularFlux().readbackRgba32f(ctx(), 0),
                     engine::readbackGBuffer(ctx(), rig_->rsm->surface())};
-  auto ref = gi::vsglAttributesReference(rsm, rig_->view);
+  auto ref = gi::vsglAttributesReference(rsm, rig_->view, broadReflections);
   // fp32 products of a handful of roundings against double: 1e-5 relative per channel, with an
   // absolute floor of 1e-6 of the channel's largest magnitude (axis components near zero).
   // The specular axis also goes through the fp32 lobe and Banerjee inverse (errors near 1e-5
@@ -78,6 +96,8 @@ TEST_F(VsglAttributesTest, MatchesReferenceAtLevelZero) {
       for (int k = 0; k < 4; ++k)
         ASSERT_NEAR(gpu[i][k], ref[a][i][k], rel * std::abs(ref[a][i][k]) + 1e-6 * largest)
             << "texel " << i << " channel " << k;
+    if (a == VSGL_ATTR_SPECULAR_POWER)
+      for (const glm::vec4& t : gpu) *glossy += t.a;
   }
 }
 

@@ -59,7 +59,7 @@ TEST(BroadReflections, AttributesRouteBroadReflectionsIntoTheDiffuseLobe) {
   for (float roughness : {0.95f, 0.6f, 0.55f, 0.1f}) {
     SCOPED_TRACE("roughness " + std::to_string(roughness));
     const gi::RsmImages rsm = texel(roughness);
-    const auto a = gi::vsglAttributesReference(rsm, gi::RsmView{});
+    const auto a = gi::vsglAttributesReference(rsm, gi::RsmView{}, true);
     const glm::dvec3 d(rsm.diffuse[0]), s(rsm.specular[0]);
     const glm::dvec3 toLight = -glm::normalize(glm::dvec3(rsm.position[0]));
     const double share = gi::glossyShare(
@@ -80,6 +80,20 @@ TEST(BroadReflections, AttributesRouteBroadReflectionsIntoTheDiffuseLobe) {
       EXPECT_GT(share, 0.0);
       EXPECT_LT(share, 1.0);
     }
+  }
+}
+
+// Settings::broadReflections off keeps every reflection in the glossy lobe, the texel's
+// diffuse flux alone in the diffuse lobe: the attributes as they were before the split.
+TEST(BroadReflections, OffKeepsEveryReflectionGlossy) {
+  for (float roughness : {0.95f, 0.6f, 0.1f}) {
+    SCOPED_TRACE("roughness " + std::to_string(roughness));
+    const gi::RsmImages rsm = texel(roughness);
+    const auto a = gi::vsglAttributesReference(rsm, gi::RsmView{}, false);
+    const glm::dvec3 d(rsm.diffuse[0]), s(rsm.specular[0]);
+    EXPECT_EQ(a[VSGL_ATTR_DIFFUSE_POWER][0], glm::dvec4(d, gi::luminance709(d)));
+    EXPECT_EQ(a[VSGL_ATTR_SPECULAR_POWER][0], glm::dvec4(s, gi::luminance709(s)));
+    EXPECT_NEAR(a[VSGL_ATTR_DIFFUSE_AXIS][0].w, gi::luminance709(d) + gi::luminance709(s), 1e-15);
   }
 }
 

@@ -150,26 +150,6 @@ TEST(VsglEmitter, FarFieldIsLambertian) {
   }
 }
 
-// A reflection keeps its light towards the horizon: its radiant intensity Phi D G F /
-// (4 cos theta_i) has no cos theta_o, so far from a flat cluster the glossy lobe's irradiance at
-// receivers facing the mean follows the SG alone, E(w) / E(xi) = G(w; xi, lambda), down to the
-// plane (a cosine there would give 3 degrees above it 0.07 of that). Tolerance 2e-3: the spot's
-// width (sigma / d = 1e-3) and the [T24] clamped-cosine fit at the receiver, as above.
-TEST(VsglEmitter, ReflectionIsNotForeshortenedTowardsTheHorizon) {
-  const gpu::Vsgl v = withoutDiffuseLight(flatVsgl());
-  const glm::dvec3 xi(0.6, 0.8, 0.0);
-  const double d = 100.0, sharpness = 50.0;
-  const double onAxis = light(v, receiverAt(d * xi, -xi), true).irradiance;
-  ASSERT_GT(onAxis, 0.0);
-  for (double degrees : {40.0, 30.0, 20.0, 10.0, 3.0}) {
-    const double e = degrees * kPi / 180.0;
-    const glm::dvec3 dir(std::cos(e), std::sin(e), 0.0);
-    const double expected = std::exp(sharpness * (glm::dot(dir, xi) - 1.0));
-    const double ratio = light(v, receiverAt(d * dir, -dir), true).irradiance / onAxis;
-    EXPECT_NEAR(ratio, expected, 2e-3 * expected) << "elevation " << degrees << " degrees";
-  }
-}
-
 // Just above the middle of a flat cluster, facing it, a receiver sees a Lambertian plane of
 // exitance Phi p(0) = Phi / (2 pi v): what the cut's normalisation gives, within 1 % (the spot
 // is not perfectly wide at h = 1e-3 sigma, and the receiver sees the Gaussian's fall-off).

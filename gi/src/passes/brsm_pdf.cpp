@@ -37,7 +37,8 @@ ImportanceVsgls::ImportanceVsgls(engine::Context& ctx, uint32_t width, uint32_t 
 
 void ImportanceVsgls::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
                              const engine::View& view, const VsglSettings& settings,
-                             const MipPyramid& mips, engine::GpuProfiler* profiler, bool specular) {
+                             const MipPyramid& mips, engine::GpuProfiler* profiler, bool specular,
+                             bool broadReflections) {
   if (view.width != vpls_.width || view.height != vpls_.height)
     throw engine::Error("BRSM importance: view " + std::to_string(view.width) + "x" +
                         std::to_string(view.height) + " differs from the " +
@@ -46,7 +47,7 @@ void ImportanceVsgls::record(VkCommandBuffer cmd, engine::GBuffer& gbuffer,
   const RsmView importance = cameraImportanceView(view);
   // Unit emission without falloff: a pixel's weight is its reflectance times its solid angle.
   flux_.record(cmd, gbuffer, importance, FluxSource{}, vpls_, profiler);
-  attributes_.record(cmd, vpls_, gbuffer, importance, mips, profiler, specular);
+  attributes_.record(cmd, vpls_, gbuffer, importance, mips, profiler, specular, broadReflections);
   generator_.record(cmd, attributes_, importance, settings, profiler);
 }
 

@@ -29,9 +29,11 @@ class ImportanceVsgls {
   // `gbuffer`: the camera's G-buffer of the size given at construction, seen through `view`.
   // `settings.count` = BrsmSettings::importanceCount; [S3] uses K = 1 and the final VSGLs' rule.
   // `specular` = false: no surface has a specular lobe (VsglAttributes::record).
+  // `broadReflections`: as VsglAttributes::record, for the receivers' glossy lobes.
   void record(VkCommandBuffer cmd, engine::GBuffer& gbuffer, const engine::View& view,
               const VsglSettings& settings, const MipPyramid& mips,
-              engine::GpuProfiler* profiler = nullptr, bool specular = true);
+              engine::GpuProfiler* profiler = nullptr, bool specular = true,
+              bool broadReflections = false);
 
   const engine::Buffer& vsgls() const { return generator_.vsgls(); }  // gpu::Vsgl[count]
   VsglAttributes& attributes() { return attributes_; }

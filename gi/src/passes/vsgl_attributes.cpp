@@ -29,7 +29,7 @@ void VsglAttributes::clearLevels(VkCommandBuffer cmd, int first, int end) {
 
 void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface,
                             const RsmView& view, const MipPyramid& mips,
-                            engine::GpuProfiler* profiler, bool specular) {
+                            engine::GpuProfiler* profiler, bool specular, bool broadReflections) {
   if (vpls.width > size_ || vpls.height > size_)
     throw engine::Error("VSGL attributes: source " + std::to_string(vpls.width) + "x" +
                         std::to_string(vpls.height) + " exceeds the " + std::to_string(size_) +
@@ -53,7 +53,8 @@ void VsglAttributes::record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffe
     }
     if (specular) specularZero_ = false;
     lastExtent_ = extent;
-    gpu::VsglAttributesPush push{glm::vec4(view.axis, 0.0f), extent, view.perspective ? 1u : 0u, 0};
+    gpu::VsglAttributesPush push{glm::vec4(view.axis, 0.0f), extent, view.perspective ? 1u : 0u,
+                                 broadReflections ? 1u : 0u};
     using engine::Binding;
     programs_[specular].dispatch(
         cmd,

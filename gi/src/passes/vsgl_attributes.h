@@ -25,9 +25,11 @@ class VsglAttributes {
   // specular = false (the effect planner: no surface has a specular lobe, so the specular
   // pyramids' level 0 would be zero) leaves the specular pyramids zero at every level, cleared
   // once while the setting stays off, and skips their lobes and mip passes: the same zeros.
+  // broadReflections: a texel's broad reflection joins its diffuse lobe (Settings::
+  // broadReflections); false keeps every reflection in the glossy lobe.
   void record(VkCommandBuffer cmd, VplImages& vpls, engine::GBuffer& surface, const RsmView& view,
-              const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr,
-              bool specular = true);
+              const MipPyramid& mips, engine::GpuProfiler* profiler = nullptr, bool specular = true,
+              bool broadReflections = false);
 
   engine::Image& pyramid(int attribute) { return pyramids_.at(attribute); }
 

@@ -203,13 +203,9 @@ VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 
   // against sqrt(d^2 + v): h / d far away, h / sqrt(v) inside the cluster, so that a receiver
   // in the plane gets f = 1 - beta however close it is to the mean.
   const double reach = std::sqrt(distance2 + variance);
-  const double elevation =
-      reach > 0.0 ? std::max(-glm::dot(emission.plane, toLight), 0.0) / reach : 0.0;
-  const double foreshortening = emission.flatness + elevation;
-  // The intensity's factor: the cosine for a Lambertian lobe; a reflection's radiance rises as
-  // its projected area falls, so it is only cut at the plane (vsgl_emitter.h).
-  const double intensity =
-      emission.lambertian ? foreshortening : (elevation > 0.0 ? 1.0 : emission.flatness);
+  const double foreshortening =
+      emission.flatness +
+      (reach > 0.0 ? std::max(-glm::dot(emission.plane, toLight), 0.0) / reach : 0.0);
   const double spotVariance =
       std::max({foreshortening * variance, distance2 * kVarianceFloorScale, kMinVariance});
   // The planar Gaussian spot seen from the receiver, G(w; l / d, d^2 / v_f) (section 4.1). At
@@ -233,10 +229,10 @@ VsglIncomingRadiance vsglIncomingRadiance(const gpu::VsglLobe& lobe, glm::dvec3 
 
   VsglIncomingRadiance radiance;
   radiance.sg = sgProduct(emitted, spot);
-  // E = Phi k / (2 pi v_f N) (section 3.4 with N for S): 2-D Gaussian times the emission's
+  // E = Phi f / (2 pi v_f N) (section 3.4 with N for S): 2-D Gaussian times the emission's
   // normalisation, so that the spot's integral 2 pi v_f / d^2 leaves I(-w_l) / d^2.
   radiance.scale =
-      glm::dvec3(lobe.power) * (keep * intensity / (2.0 * kPi * spotVariance * normalisation));
+      glm::dvec3(lobe.power) * (keep * foreshortening / (2.0 * kPi * spotVariance * normalisation));
   return radiance;
 }
 

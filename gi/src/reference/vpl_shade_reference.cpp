@@ -51,7 +51,7 @@ glm::dvec3 intensity(const PointLight& p, glm::dvec3 toward, double spread) {
   const double lambda = p.sharpness / (1.0 + p.sharpness * spread);
   const double g = std::exp(lambda * (glm::dot(p.axis, toward) - 1.0));
   const double beta = 1.0 - p.flatness;
-  const double cut = glm::dot(p.plane, toward) > 0.0 ? 1.0 : p.flatness;
+  const double cut = p.flatness + std::max(glm::dot(p.plane, toward), 0.0);
   const double axisDotNormal = beta > 0.0 ? std::max(glm::dot(p.axis, p.plane) / beta, 0.0) : 0.0;
   return i + p.specular * (g * cut / vsglSpecularNormalisation(lambda, axisDotNormal, beta));
 }

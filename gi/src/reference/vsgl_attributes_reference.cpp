@@ -15,8 +15,8 @@ bool finite(const glm::vec4& v) {
 
 }  // namespace
 
-std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(const RsmImages& rsm,
-                                                                             const RsmView& view) {
+std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(
+    const RsmImages& rsm, const RsmView& view, bool broadReflections) {
   std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> out;
   for (auto& a : out) a.assign(rsm.position.size(), glm::dvec4(0.0));
   for (size_t i = 0; i < rsm.position.size(); ++i) {
@@ -26,7 +26,8 @@ std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(con
     const glm::dvec3 toLight = view.perspective ? -glm::normalize(y) : -glm::dvec3(view.axis);
     const double pdf = luminance709(glm::dvec3(d)) + luminance709(glm::dvec3(s));
     const SgLobe lobe = specularLobe(n, toLight, static_cast<double>(s.a));
-    const glm::dvec3 glossy = glossyShare(lobe.sharpness) * glm::dvec3(s);
+    const glm::dvec3 glossy =
+        (broadReflections ? glossyShare(lobe.sharpness) : 1.0) * glm::dvec3(s);
     const glm::dvec3 lambert = glm::dvec3(d) + glm::dvec3(s) - glossy;
     const double wd = luminance709(lambert), ws = luminance709(glossy);
     const double rs = banerjeeMeanLength(lobe.sharpness);

@@ -5,8 +5,8 @@
 #include <array>
 #include <vector>
 
-#include "engine/gbuffer_reference.h"
 #include "common/rsm_view.h"
+#include "engine/gbuffer_reference.h"
 #include "shared/vsgl_attributes.h"
 
 namespace gi {
@@ -18,7 +18,9 @@ struct RsmImages {
   engine::GBufferData surface;      // the light's G-buffer (normals)
 };
 
-std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(const RsmImages& rsm,
-                                                                             const RsmView& view);
+// broadReflections: a texel's broad reflection joins its diffuse lobe (gi::glossyShare), as
+// Settings::broadReflections; false keeps every reflection in the specular lobe.
+std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(
+    const RsmImages& rsm, const RsmView& view, bool broadReflections = false);
 
 }  // namespace gi

@@ -18,8 +18,8 @@ double vsglPlanarity(double diffuseSharpness) {
 }
 
 double vsglSpecularNormalisation(double sharpness, double axisDotNormal, double planarity) {
-  const double above = planarity > 0.0 ? vmfUpperHemisphereFraction(sharpness, axisDotNormal) : 1.0;
-  return sgIntegral(sharpness) * ((1.0 - planarity) + planarity * above);
+  return (1.0 - planarity) * sgIntegral(sharpness) +
+         planarity * kPi * sgClampedCosineIntegralOverPi(sharpness, axisDotNormal);
 }
 
 double vsglLambertianNormalisation(double emissionSharpness, double planarity) {

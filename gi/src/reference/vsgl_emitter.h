@@ -18,18 +18,17 @@ double vsglPlanarity(double diffuseSharpness);
 // The emission of each lobe of `vsgl`; `planar` false (Settings::planarEmitters off) gives the
 // SG emitter for both. The plane normal is the diffuse lobe's axis (the cluster's mean normal);
 // a VSGL without diffuse weight has no plane and keeps the SG emitter. The diffuse lobe is the
-// Lambertian one (its sharpness follows the spot); the specular lobe keeps its sharpness and is
-// cut at the plane without the cosine (a reflection's intensity Phi D G F / (4 cos theta_i) has
-// no cos theta_o), with N = vsglSpecularNormalisation at (xi . n)^+ (a lobe below the plane,
-// which no reflection makes, loses what the cut removes instead of being amplified).
+// Lambertian one (its sharpness follows the spot); the specular lobe keeps its sharpness, cut
+// by the same cosine factor, with N = vsglSpecularNormalisation at (xi . n)^+ (a lobe below the
+// plane, which no reflection makes, loses what the cut removes instead of being amplified).
 struct VsglEmission {
   VsglLobeEmission diffuse;
   VsglLobeEmission specular;
 };
 VsglEmission vsglEmission(const gpu::Vsgl& vsgl, bool planar);
 
-// N = integral over the sphere of G(w; axis, lambda) ((1 - beta) + beta [w . n > 0])
-//   = S(lambda) ((1 - beta) + beta F(lambda, axis . n)), F the [T24] share above the plane.
+// N = integral over the sphere of G(w; axis, lambda) ((1 - beta) + beta (w . n)^+)
+//   = (1 - beta) S(lambda) + beta pi D(lambda, axis . n), D the [T24] clamped-cosine integral.
 double vsglSpecularNormalisation(double sharpness, double axisDotNormal, double planarity);
 
 // N of a Lambertian lobe at emission sharpness lambda_e: (1 - beta) S(lambda_e) + 2 pi beta
