@@ -49,7 +49,7 @@ struct LightViewInputs {
   Light light;
   uint32_t face = 0;  // a point light's cube face, else 0
   bool specularLobes = true;
-  bool broadReflections = true;
+  bool broadReflections = false;
   // The PDF channel of the pyramids is the flux PDF, or BRSM's, which the PDF pass writes over
   // it: pyramids kept from a BRSM frame cannot serve a flux-PDF one.
   PdfKind pdf = PdfKind::Brsm;
@@ -62,7 +62,7 @@ struct ImportanceInputs {
   uint32_t count = 0;
   KernelRule rule = KernelRule::Modified;
   bool specularLobes = true;
-  bool broadReflections = true;
+  bool broadReflections = false;
   bool operator==(const ImportanceInputs&) const = default;
 };
 

@@ -28,7 +28,8 @@ std::array<std::vector<glm::dvec4>, VSGL_ATTR_COUNT> vsglAttributesReference(
     const SgLobe lobe = specularLobe(n, toLight, static_cast<double>(s.a));
     const glm::dvec3 glossy =
         (broadReflections ? glossyShare(lobe.sharpness) : 1.0) * glm::dvec3(s);
-    const glm::dvec3 lambert = glm::dvec3(d) + glm::dvec3(s) - glossy;
+    // As the shader: what the glossy lobe does not keep, exactly 0 when it keeps all.
+    const glm::dvec3 lambert = glm::dvec3(d) + (glm::dvec3(s) - glossy);
     const double wd = luminance709(lambert), ws = luminance709(glossy);
     const double rs = banerjeeMeanLength(lobe.sharpness);
     const double yy = glm::dot(y, y);
