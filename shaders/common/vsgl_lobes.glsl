@@ -54,7 +54,8 @@ void vplSpecularLobe(vec3 n, vec3 toLight, float roughness, out vec3 axis, out f
 // narrower than the Lambert lobe is emitted as the Lambert lobe instead. Smoothstep in log
 // sharpness from VSGL_FLAT_SHARPNESS (0) to VSGL_GLOSSY_SHARPNESS_RATIO times it (1).
 float vplGlossyShare(float sharpness) {
-  float x = log(max(sharpness, 1e-30) / float(VSGL_FLAT_SHARPNESS)) / log(float(VSGL_GLOSSY_SHARPNESS_RATIO));
+  float x = log(max(sharpness, 1e-30) / float(VSGL_FLAT_SHARPNESS)) /
+            log(float(VSGL_GLOSSY_SHARPNESS_RATIO));
   return smoothstep(0.0, 1.0, x);
 }
 
@@ -74,10 +75,6 @@ void lobeFromMeanAxis(vec3 meanAxis, out vec3 axis, out float sharpness) {
   sharpness = banerjeeSharpness(meanLength);
 }
 
-// A VSGL lobe from its cluster sums (vsgl-math.md 3.2), for filtered kernels and k-means
-// clusters alike: mean (relative to the RSM origin, moved to world by `origin`), per-axis
-// variance (never negative), axis and Banerjee sharpness (axis length 0 -> isotropic), power.
-// No weight (w = 0) gives a powerless lobe at the origin.
 // Planar emitters' beta (common/vsgl_emitter.glsl), read from a diffuse lobe's sharpness:
 // smoothstep from VSGL_CORNER_SHARPNESS (0) to VSGL_FLAT_SHARPNESS (1). Here because generation
 // reads it too (kernels that leave their surface).
@@ -85,6 +82,10 @@ float vsglPlanarity(float diffuseSharpness) {
   return smoothstep(float(VSGL_CORNER_SHARPNESS), float(VSGL_FLAT_SHARPNESS), diffuseSharpness);
 }
 
+// A VSGL lobe from its cluster sums (vsgl-math.md 3.2), for filtered kernels and k-means
+// clusters alike: mean (relative to the RSM origin, moved to world by `origin`), per-axis
+// variance (never negative), axis and Banerjee sharpness (axis length 0 -> isotropic), power.
+// No weight (w = 0) gives a powerless lobe at the origin.
 VsglLobe buildVsglLobe(vec4 power, vec4 position, vec4 axis, vec3 origin) {
   VsglLobe lobe;
   float w = power.w;

@@ -6,9 +6,9 @@
 SHARED_BEGIN
 
 struct VsglAttributesPush {
-  vec4 axis;         // xyz = unit direction the light travels (used for directional lights)
-  uvec2 size;        // RSM texels (a power-of-two square)
-  uint perspective;  // 1 = spot: the direction to the light is -normalize(y)
+  vec4 axis;              // xyz = unit direction the light travels (used for directional lights)
+  uvec2 size;             // RSM texels (a power-of-two square)
+  uint perspective;       // 1 = spot: the direction to the light is -normalize(y)
   uint broadReflections;  // 1: broad reflections join the diffuse lobe (vplGlossyShare)
 };
 
