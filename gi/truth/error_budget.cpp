@@ -151,20 +151,31 @@ Radiance integrateLobe(const gi::VsglIncomingRadiance& lobe, const gi::ShadeRece
   return out;
 }
 
+// The texels of every view the kernels or the VPLs lie in.
+size_t texelCount(const std::vector<gpu::Vsgl>& vsgls, const KernelLayout& layout,
+                  const std::vector<Vpl>& vpls) {
+  size_t texels = size_t{layout.rsmSize} * layout.rsmSize;
+  for (size_t k = 0; k < vsgls.size(); ++k)
+    texels = std::max(texels, layout.firstTexel(k) + size_t{layout.rsmSize} * layout.rsmSize);
+  for (const Vpl& v : vpls) texels = std::max(texels, size_t{v.texel} + 1);
+  return texels;
+}
+
 // Per VSGL, the VPLs under its kernel (indices into `vpls`) with their kernel weight times
 // power; empty for k-means clusters.
 std::vector<std::vector<std::pair<uint32_t, double>>> kernelMembers(
-    const std::vector<gpu::Vsgl>& vsgls, uint32_t rsmSize, const std::vector<Vpl>& vpls) {
-  std::vector<int64_t> vplAt(size_t{rsmSize} * rsmSize, -1);
+    const std::vector<gpu::Vsgl>& vsgls, const KernelLayout& layout, const std::vector<Vpl>& vpls) {
+  std::vector<int64_t> vplAt(texelCount(vsgls, layout, vpls), -1);
   for (size_t j = 0; j < vpls.size(); ++j) vplAt.at(vpls[j].texel) = int64_t(j);
   std::vector<std::vector<std::pair<uint32_t, double>>> members(vsgls.size());
   for (size_t k = 0; k < vsgls.size(); ++k) {
     const gpu::Vsgl& v = vsgls[k];
     if (v.kernel.z < 0.0f) continue;
+    const size_t first = layout.firstTexel(k);
     std::map<uint32_t, double> weights;  // a texel is reached once per level and corner
-    forEachKernelTexel(glm::dvec2(v.kernel.x, v.kernel.y), v.kernel.z, rsmSize,
+    forEachKernelTexel(glm::dvec2(v.kernel.x, v.kernel.y), v.kernel.z, layout.rsmSize,
                        [&](size_t t, double w) {
-                         if (vplAt[t] >= 0) weights[uint32_t(vplAt[t])] += w;
+                         if (vplAt[first + t] >= 0) weights[uint32_t(vplAt[first + t])] += w;
                        });
     for (const auto& [j, w] : weights)
       if (const double p = w * vplPower(vpls[j]); p > 0.0) members[k].push_back({j, p});
@@ -178,23 +189,27 @@ bool flatVsgl(const gpu::Vsgl& vsgl) {
   return vsgl.diffuse.power.a > 0.0f && gi::vsglPlanarity(vsgl.diffuse.axisSharpness.w) >= 0.95;
 }
 
-std::vector<double> kernelTexelWeights(const std::vector<gpu::Vsgl>& vsgls, uint32_t rsmSize,
-                                       const std::vector<Vpl>& vpls) {
-  const size_t texels = size_t{rsmSize} * rsmSize;
+std::vector<double> kernelTexelWeights(const std::vector<gpu::Vsgl>& vsgls,
+                                       const KernelLayout& layout, const std::vector<Vpl>& vpls) {
+  const size_t texels = texelCount(vsgls, layout, vpls);
   for (const gpu::Vsgl& v : vsgls)
     if (v.kernel.z < 0.0f) return std::vector<double>(texels, 1.0);  // k-means: a partition
   std::vector<double> power(texels, 0.0);
   for (const Vpl& v : vpls) power.at(v.texel) = vplPower(v);
   std::vector<double> weights(texels, 0.0);
-  for (const gpu::Vsgl& v : vsgls) {
+  for (size_t i = 0; i < vsgls.size(); ++i) {
+    const gpu::Vsgl& v = vsgls[i];
     const glm::dvec2 x(v.kernel.x, v.kernel.y);
     const double level = v.kernel.z;
+    const size_t first = layout.firstTexel(i);
     double covered = 0.0;  // the kernel-weighted power of the texels under it
-    forEachKernelTexel(x, level, rsmSize, [&](size_t t, double k) { covered += k * power[t]; });
+    forEachKernelTexel(x, level, layout.rsmSize,
+                       [&](size_t t, double k) { covered += k * power[first + t]; });
     const double total = double(v.diffuse.power.a) + double(v.specular.power.a);
     if (!(covered > 0.0) || !(total > 0.0)) continue;
     const double scale = total / covered;
-    forEachKernelTexel(x, level, rsmSize, [&](size_t t, double k) { weights[t] += scale * k; });
+    forEachKernelTexel(x, level, layout.rsmSize,
+                       [&](size_t t, double k) { weights[first + t] += scale * k; });
   }
   return weights;
 }
@@ -223,7 +238,7 @@ VsglStageImages vsglStages(const engine::Scene& scene, const EmbreeScene& rays,
   std::vector<std::vector<std::pair<uint32_t, double>>> members;
   if (vpls) {
     out.areaVisible.assign(pixels, glm::dvec3(0.0));
-    members = kernelMembers(vsgls, settings.rsmSize, *vpls);
+    members = kernelMembers(vsgls, settings.kernels, *vpls);
   }
   std::vector<gi::IsmFrameReference> frames;
   std::vector<gi::VsglEmission> emissions;

@@ -31,14 +31,26 @@
 
 namespace truth {
 
-// Per texel of the rsmSize^2 RSM (row-major, as Vpl::texel), the weight with which the VSGLs'
-// kernels count it: sum over VSGLs i of s_i k_i(t), k_i the exact weights of filtered
+// Where the VSGLs' kernels lie: the RSM views' side, and each VSGL's view, in the order of
+// FrameOutput::vsglViews (a point light's six cube faces, several lights' views one after the
+// other). Texel t of view v is v * rsmSize^2 + t, as rsmVpls numbers them. Without `views`
+// every kernel lies in view 0.
+struct KernelLayout {
+  uint32_t rsmSize = 0;
+  std::vector<uint32_t> views;  // per VSGL
+  size_t firstTexel(size_t vsgl) const {
+    return (views.empty() ? 0 : size_t{views.at(vsgl)}) * rsmSize * rsmSize;
+  }
+};
+
+// Per texel of the RSM views (as Vpl::texel), the weight with which the VSGLs' kernels count
+// it: sum over VSGLs i of s_i k_i(t), k_i the exact weights of filtered
 // sampling's trilinear fetch at (x_i, l_i) (vsgl_generate.comp: bilinear per level with
 // clamp-to-edge, each level-l texel the mean of its 4^l level-0 texels), s_i the VSGL's power
 // over the kernel-weighted power of the VPLs (M / (N p~) for modified FIS, whatever the rule).
 // 1 everywhere is a perfect tiling. k-means clusters (kernel.z < 0) partition the texels: 1.
-std::vector<double> kernelTexelWeights(const std::vector<gpu::Vsgl>& vsgls, uint32_t rsmSize,
-                                       const std::vector<Vpl>& vpls);
+std::vector<double> kernelTexelWeights(const std::vector<gpu::Vsgl>& vsgls,
+                                       const KernelLayout& layout, const std::vector<Vpl>& vpls);
 
 // `vpls` with each incident power scaled by its texel's weight.
 std::vector<Vpl> weightedVpls(const std::vector<Vpl>& vpls, const std::vector<double>& weights);
@@ -70,9 +82,10 @@ struct VsglStageSettings {
   // between runs.
   uint32_t samplesPerLobe = 32;
   unsigned threads = 0;
-  // The RSM's VPLs (rsmVpls) and its side: with them the areaVisible image is computed.
+  // The RSM's VPLs (rsmVpls) and where the kernels lie: with them the areaVisible image is
+  // computed.
   const std::vector<Vpl>* kernelVpls = nullptr;
-  uint32_t rsmSize = 0;
+  KernelLayout kernels;
 };
 
 // Primary rays through pixel centres (as the path tracer's); visibility of VSGL k from a

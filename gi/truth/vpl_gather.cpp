@@ -90,9 +90,12 @@ std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, ui
 std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays,
                          std::span<const uint32_t> lights, uint32_t rsmSize) {
   std::vector<Vpl> vpls;
+  size_t firstView = 0;
   for (uint32_t light : lights) {
-    const std::vector<Vpl> own = rsmVpls(scene, rays, light, rsmSize);
+    std::vector<Vpl> own = rsmVpls(scene, rays, light, rsmSize);
+    for (Vpl& v : own) v.texel += static_cast<uint32_t>(firstView * rsmSize * rsmSize);
     vpls.insert(vpls.end(), own.begin(), own.end());
+    firstView += gi::makeRsmViews(scene.bounds(), scene.lights.at(light), rsmSize).size();
   }
   return vpls;
 }

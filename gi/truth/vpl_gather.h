@@ -35,15 +35,18 @@ struct Vpl {
   glm::dvec3 f0{0.0};
   double f90 = 1.0;
   double roughness = 0.0;
-  uint32_t texel = 0;  // y * rsmSize + x of the RSM texel it stands for
+  uint32_t texel = 0;  // view * rsmSize^2 + y * rsmSize + x of the RSM texel it stands for
 };
 
-// The lit texels of light `light`'s rsmSize^2 RSM (gi::makeRsmView, rasterised and resolved by
-// the CPU references, flux by gi::rsmFluxReference), each moved onto the surface `rays` finds
-// along the light's ray through it.
+// The lit texels of light `light`'s rsmSize^2 RSM views (gi::makeRsmViews: one, or a point
+// light's six cube faces, numbered in that order), rasterised and resolved by the CPU references,
+// flux by gi::rsmFluxReference, each moved onto the surface `rays` finds along the light's ray
+// through it.
 std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays, uint32_t light,
                          uint32_t rsmSize);
 // Those of every light in `lights`, one after the other (their gather is the sum of each one's).
+// Texels are numbered across all their views in order, view v's from v * rsmSize^2 (a point
+// light has six views), as the module's FrameOutput::vsglViews lists them.
 std::vector<Vpl> rsmVpls(const engine::Scene& scene, const EmbreeScene& rays,
                          std::span<const uint32_t> lights, uint32_t rsmSize);
 

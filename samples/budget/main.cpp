@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "cli_values.h"
+#include "common/rsm_view.h"
 #include "default_light.h"
 #include "embree_scene.h"
 #include "engine/error.h"
@@ -194,15 +195,6 @@ int run(const Options& o) {
         samples::applyLightChoice(scenes.back(), o.light, false, float(o.width) / float(o.height));
     if (!note.empty()) std::printf("%s\n", note.c_str());
     samples::bouncingLights(scenes.back());  // throws for none or too many
-    // The grouping stage maps each VSGL's kernel onto the texels of one RSM view, so the budget
-    // splits one spot or directional light's error (the benchmark scores several lights).
-    const std::vector<engine::Light>& lights = scenes.back().lights;
-    if (lights.size() > 1)
-      throw engine::Error(name + ": " + std::to_string(lights.size()) +
-                          " lights; the budget splits one light's error (--light sun or "
-                          "headlight replaces them with one)");
-    if (lights.front().type == engine::LightType::Point)
-      throw engine::Error(name + ": a point light's six RSM views are not in the budget yet");
   }
   const std::filesystem::path out(o.outDir);
   samples::createOutputDirectory(o.outDir);
@@ -215,19 +207,22 @@ int run(const Options& o) {
     const engine::Scene& scene = scenes[si];
     const std::string name = std::filesystem::path(o.scenes[si]).stem().string();
     const engine::View view = samples::sceneView(scene, o.width, o.height);
-    const engine::Light& light = scene.lights.front();  // the only one (checked above)
-    const uint32_t lightIndex = 0;
+    // Every light of the scene bounces, its views numbered in order as the module's
+    // FrameOutput::vsglViews and rsmVpls number them (a point light has six).
+    const std::vector<uint32_t> lights = samples::bouncingLights(scene);
+    size_t viewCount = 0;
+    for (uint32_t l : lights)
+      viewCount += gi::makeRsmViews(scene.bounds(), scene.lights[l], o.rsm).size();
     truth::PathTraceSettings trace;
     trace.relativeError = o.noise;
     trace.progress = true;
-    const truth::PathTraceImage traced =
-        truth::cachedPathTrace(cache, scene, view, lightIndex, trace);
+    const truth::PathTraceImage traced = truth::cachedPathTrace(cache, scene, view, lights, trace);
     std::vector<glm::dvec3> reference(traced.diffuse.size());
     for (size_t i = 0; i < reference.size(); ++i)
       reference[i] = traced.diffuse[i] + traced.glossy[i];
 
     const truth::EmbreeScene rays(scene);
-    const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, rays, lightIndex, o.rsm);
+    const std::vector<truth::Vpl> vpls = truth::rsmVpls(scene, rays, lights, o.rsm);
     const truth::VplGatherImage gathered = truth::vplGather(scene, rays, view, vpls);
     std::vector<glm::dvec3> rsmStage(reference.size());
     for (size_t i = 0; i < rsmStage.size(); ++i)
@@ -245,7 +240,7 @@ int run(const Options& o) {
       std::unique_ptr<gi::IndirectLighting> lighting =
           samples::createIndirect(ctx, settings, o.width, o.height, gpuScene, scene);
       gi::FrameOutput output;
-      const gi::FrameInput in = samples::frameInput(gbuffer, view, light);
+      const gi::FrameInput in = samples::frameInput(gbuffer, view, scene.lights);
       ctx.submitAndWait(
           [&](VkCommandBuffer cmd) { samples::check(lighting->record(cmd, in, &output)); });
       for (engine::Image* image :
@@ -254,8 +249,17 @@ int run(const Options& o) {
       const std::vector<glm::dvec3> module =
           samples::indirectSum(samples::readIndirect(ctx, output, o.width, o.height));
       const std::vector<gpu::Vsgl> vsgls = samples::readVsgls(ctx, output);
+      if (output.viewCount != viewCount)
+        throw engine::Error(name + ": the module bounced " + std::to_string(output.viewCount) +
+                            " RSM views of the scene's " + std::to_string(viewCount) +
+                            " (a light without power gets none); the budget needs them all");
+      truth::KernelLayout layout{o.rsm, std::vector<uint32_t>(vsgls.size(), 0)};
+      const std::vector<glm::uvec2> ranges = samples::readVsglViews(ctx, output);
+      for (uint32_t v = 0; v < ranges.size(); ++v)
+        for (uint32_t k = ranges[v].x; k < ranges[v].x + ranges[v].y && k < vsgls.size(); ++k)
+          layout.views[k] = v;
 
-      const std::vector<double> weights = truth::kernelTexelWeights(vsgls, o.rsm, vpls);
+      const std::vector<double> weights = truth::kernelTexelWeights(vsgls, layout, vpls);
       double covered = 0.0, power = 0.0;  // the VSGLs' share of the RSM's power
       for (const truth::Vpl& v : vpls) {
         const double p = v.incident.r + v.incident.g + v.incident.b;
@@ -277,7 +281,7 @@ int run(const Options& o) {
       stageSettings.ismCentreOffset = settings.ism.centreOffset;
       stageSettings.samplesPerLobe = o.samples;
       stageSettings.kernelVpls = &vpls;
-      stageSettings.rsmSize = o.rsm;
+      stageSettings.kernels = layout;
       const truth::VsglStageImages sg = truth::vsglStages(scene, rays, view, vsgls, stageSettings);
 
       // Which VSGLs the light model's error comes from: the flat ones' light, then the others',
@@ -285,21 +289,24 @@ int run(const Options& o) {
       // others' VPL image is the whole one less the flat ones'. k-means clusters map to no
       // texels by their record, so their split is not made.
       std::vector<gpu::Vsgl> flat;
+      truth::KernelLayout flatLayout{o.rsm, {}};
       double flatPower = 0.0, allPower = 0.0;
       bool kernels = true;
-      for (const gpu::Vsgl& v : vsgls) {
+      for (size_t k = 0; k < vsgls.size(); ++k) {
+        const gpu::Vsgl& v = vsgls[k];
         const double p = double(v.diffuse.power.a) + double(v.specular.power.a);
         allPower += p;
         kernels = kernels && v.kernel.z >= 0.0f;
         if (!truth::flatVsgl(v)) continue;
         flat.push_back(v);
+        flatLayout.views.push_back(layout.views[k]);
         flatPower += p;
       }
       std::vector<glm::dvec3> flatExact, nonFlatExact;
       if (kernels) {
         const truth::VplGatherImage flatGroup = truth::vplGather(
             scene, rays, view,
-            truth::weightedVpls(vpls, truth::kernelTexelWeights(flat, o.rsm, vpls)), 0, false);
+            truth::weightedVpls(vpls, truth::kernelTexelWeights(flat, flatLayout, vpls)), 0, false);
         for (size_t i = 0; i < reference.size(); ++i) {
           const glm::dvec3 flatVpls = flatGroup.diffuse[i] + flatGroup.glossy[i];
           flatExact.push_back(flatVpls + sg.unshadowed[i] - sg.unshadowedFlat[i]);

@@ -1,7 +1,8 @@
 // The error budget's CPU stages (gi/truth/error_budget.h): kernel weights that tile exactly
-// read 1, the numeric SG stage agrees with the analytic twin where that twin is accurate, area
-// visibility is what a kernel's own VPLs see, the flat share is the flat VSGLs' light, and the
-// regions find the floor under a lit floor and the floor-wall lines.
+// read 1 (each kernel in its own RSM view), the numeric SG stage agrees with the analytic twin
+// where that twin is accurate, area visibility is what a kernel's own VPLs see, the flat share is
+// the flat VSGLs' light, and the regions find the floor under a lit floor and the floor-wall
+// lines.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -53,10 +54,10 @@ TEST(ErrorBudget, KernelWeightsReadTheTiling) {
   for (glm::vec2 c : {glm::vec2(0.25f, 0.25f), glm::vec2(0.75f, 0.25f), glm::vec2(0.25f, 0.75f),
                       glm::vec2(0.75f, 0.75f)})
     vsgls.push_back(kernelVsgl(c, 3.0f, quadrant));
-  for (double w : truth::kernelTexelWeights(vsgls, kRsm, vpls)) EXPECT_NEAR(w, 1.0, 1e-12);
+  for (double w : truth::kernelTexelWeights(vsgls, {kRsm}, vpls)) EXPECT_NEAR(w, 1.0, 1e-12);
 
   std::vector<gpu::Vsgl> gap(vsgls.begin(), vsgls.begin() + 3);
-  const std::vector<double> gapWeights = truth::kernelTexelWeights(gap, kRsm, vpls);
+  const std::vector<double> gapWeights = truth::kernelTexelWeights(gap, {kRsm}, vpls);
   for (uint32_t y = 0; y < kRsm; ++y)
     for (uint32_t x = 0; x < kRsm; ++x)
       EXPECT_NEAR(gapWeights[y * kRsm + x], x >= kRsm / 2 && y >= kRsm / 2 ? 0.0 : 1.0, 1e-12);
@@ -67,12 +68,12 @@ TEST(ErrorBudget, KernelWeightsReadTheTiling) {
     twice.push_back(v);
     twice.push_back(v);
   }
-  for (double w : truth::kernelTexelWeights(twice, kRsm, vpls)) EXPECT_NEAR(w, 1.0, 1e-6);
+  for (double w : truth::kernelTexelWeights(twice, {kRsm}, vpls)) EXPECT_NEAR(w, 1.0, 1e-6);
 
   // A kernel between levels and texels spreads over its trilinear footprint; its weights carry
   // exactly its power.
   const gpu::Vsgl blurred = kernelVsgl({0.4f, 0.55f}, 1.6f, 3.0f);
-  const std::vector<double> spread = truth::kernelTexelWeights({blurred}, kRsm, vpls);
+  const std::vector<double> spread = truth::kernelTexelWeights({blurred}, {kRsm}, vpls);
   double carried = 0.0;
   size_t touched = 0;
   for (double w : spread) {
@@ -85,7 +86,28 @@ TEST(ErrorBudget, KernelWeightsReadTheTiling) {
   // k-means clusters partition the texels.
   gpu::Vsgl cluster = blurred;
   cluster.kernel = glm::vec4(0.0f, 0.0f, -1.0f, 12.0f);
-  for (double w : truth::kernelTexelWeights({cluster}, kRsm, vpls)) EXPECT_EQ(w, 1.0);
+  for (double w : truth::kernelTexelWeights({cluster}, {kRsm}, vpls)) EXPECT_EQ(w, 1.0);
+}
+
+// Kernels of several RSM views (a point light's cube faces, several lights): a kernel of view v
+// weighs the texels from v * rsmSize^2, as rsmVpls numbers the VPLs. Two views of uniform VPLs,
+// the four quadrant kernels in view 1 only: view 1 reads 1, view 0 nothing.
+TEST(ErrorBudget, KernelWeightsFollowTheirView) {
+  std::vector<truth::Vpl> vpls = uniformVpls();
+  for (truth::Vpl v : uniformVpls()) {
+    v.texel += kRsm * kRsm;
+    vpls.push_back(v);
+  }
+  const float quadrant = 0.5f * kRsm * kRsm / 4.0f;
+  std::vector<gpu::Vsgl> vsgls;
+  for (glm::vec2 c : {glm::vec2(0.25f, 0.25f), glm::vec2(0.75f, 0.25f), glm::vec2(0.25f, 0.75f),
+                      glm::vec2(0.75f, 0.75f)})
+    vsgls.push_back(kernelVsgl(c, 3.0f, quadrant));
+  const std::vector<double> weights =
+      truth::kernelTexelWeights(vsgls, {kRsm, std::vector<uint32_t>(vsgls.size(), 1)}, vpls);
+  ASSERT_EQ(weights.size(), 2u * kRsm * kRsm);
+  for (size_t t = 0; t < weights.size(); ++t)
+    EXPECT_NEAR(weights[t], t < kRsm * kRsm ? 0.0 : 1.0, 1e-12) << "texel " << t;
 }
 
 // The numeric SG stage against the analytic twin on the Cornell box with a few VSGLs: the
@@ -173,7 +195,7 @@ TEST(ErrorBudget, AreaVisibilityIsWhatTheKernelsOwnVplsSee) {
   truth::VsglStageSettings settings;
   settings.samplesPerLobe = 16;
   settings.kernelVpls = &vpls;
-  settings.rsmSize = kRsm;
+  settings.kernels.rsmSize = kRsm;
   const truth::VsglStageImages stages = truth::vsglStages(scene, rays, view, {vsgl}, settings);
   ASSERT_EQ(stages.areaVisible.size(), stages.unshadowed.size());
   size_t all = 0, none = 0, part = 0;
