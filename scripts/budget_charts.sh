@@ -22,7 +22,7 @@ for scene in $(tail -n +2 "$csv" | cut -d, -f1 | sort -u); do
     relmse+=("'$file' using 1:2 with linespoints title '$stage'")
     mean+=("'$file' using 1:3 with linespoints title '$stage'")
   done
-  for term in "pngcairo size 1200,480" "svg size 1200,480"; do
+  for term in "pngcairo noenhanced size 1200,480" "svg noenhanced size 1200,480"; do
     ext=${term%% *}; ext=${ext%cairo}
     gnuplot <<PLOT
 set terminal $term
