@@ -63,7 +63,8 @@ float sgInnerProduct(Sg a, Sg b, float logScale) {
 // (zero-variance) lobes and a receiver at the mean stay finite, with logAmplitude = log(f / v_f)
 // (-inf where f = 0). f = plane.w + (plane.xyz . (receiver - mean))^+ / sqrt(d^2 + v) is the
 // emitter's foreshortening (common/vsgl_emitter.glsl: the elevation's cosine, measured against
-// the cluster's own size near it); plane = (0, 0, 0, 1), f = 1, for the SG emitter of section 3.4. At d = 0 the sharpness is 0 and the axis (`fallbackAxis`) irrelevant (case 12).
+// the cluster's own size near it); plane = (0, 0, 0, 1), f = 1, for the SG emitter of section 3.4.
+// At d = 0 the sharpness is 0 and the axis (`fallbackAxis`) irrelevant (case 12).
 Sg vsglSpot(vec3 mean, float variance, vec3 receiver, vec4 plane, vec3 fallbackAxis) {
   vec3 toLight = mean - receiver;
   float distance2 = dot(toLight, toLight);
